@@ -1,0 +1,22 @@
+// hexlod: streams massive procedural cities with level of detail. Each subcommand lives in
+// its own file and registers itself here.
+#include "expand_command.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+int main(int argc, char** argv) {
+    CLI::App app{"hexlod: massive procedural cities with level of detail"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "hexlod 0.1.0");
+    hexlod::apps::ExpandOptions expand;
+    CLI::App* expandCommand = hexlod::apps::registerExpandCommand(app, expand);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e, std::cout, std::cerr);
+    }
+    if (expandCommand->parsed()) return hexlod::apps::runExpandCommand(expand);
+    return 0;
+}
