@@ -62,19 +62,21 @@ Timing timeExpansion(const grammar::BatchInput& input, uint32_t repeat) {
     return timing;
 }
 
-nlohmann::json statsJson(const CompiledGrammar& g, const ExpandOptions& options, size_t buildings, uint32_t threads,
-                         const Timing& timing) {
+nlohmann::json statsJson(const CompiledGrammar& g, const ExpandOptions& options, size_t buildings,
+                         uint32_t threads, const Timing& timing) {
     const BatchResult& r = timing.result;
     const uint64_t terminals = r.terminals.records.size();
     uint64_t geometryBytes = 0;
     nlohmann::json perShape = nlohmann::json::object();
     for (size_t s = 0; s < g.shapes.size(); ++s) {
-        geometryBytes += uint64_t(r.terminals.countPerShape[s]) * g.shapes[s].triangles * kBytesPerGeometryTriangle;
+        geometryBytes +=
+            uint64_t(r.terminals.countPerShape[s]) * g.shapes[s].triangles * kBytesPerGeometryTriangle;
         if (r.terminals.countPerShape[s] > 0) perShape[g.shapes[s].name] = r.terminals.countPerShape[s];
     }
     const uint64_t bytes = r.terminals.byteSize();
     nlohmann::json issues = nlohmann::json::array();
-    for (const grammar::BatchIssue& issue : r.issues) issues.push_back(describeIssue(g, issue.first, issue.occurrences));
+    for (const grammar::BatchIssue& issue : r.issues)
+        issues.push_back(describeIssue(g, issue.first, issue.occurrences));
     return {
         {"grammar", options.grammarPath},
         {"buildings", buildings},
@@ -106,27 +108,33 @@ void printStats(const nlohmann::json& stats) {
     for (const auto& [name, count] : stats["terminals_per_shape"].items()) {
         std::printf("  %-22s %llu\n", name.c_str(), count.get<unsigned long long>());
     }
-    std::printf("bytes        %llu (%.2f B/terminal), extruded set %llu\n", stats["bytes"].get<unsigned long long>(),
-                stats["bytes_per_terminal"].get<double>(), stats["extruded_bytes"].get<unsigned long long>());
-    std::printf("geometry     %llu bytes (%.0fx the terminal set)\n", stats["geometry_bytes"].get<unsigned long long>(),
+    std::printf("bytes        %llu (%.2f B/terminal), extruded set %llu\n",
+                stats["bytes"].get<unsigned long long>(), stats["bytes_per_terminal"].get<double>(),
+                stats["extruded_bytes"].get<unsigned long long>());
+    std::printf("geometry     %llu bytes (%.0fx the terminal set)\n",
+                stats["geometry_bytes"].get<unsigned long long>(),
                 stats["geometry_to_terminal_ratio"].get<double>());
-    std::printf("time         %.4f s median of %u on %u threads (%.2f M terminals/s)\n", stats["seconds"].get<double>(),
-                stats["repeat"].get<unsigned>(), stats["threads"].get<unsigned>(),
-                stats["terminals_per_second"].get<double>() / 1e6);
+    std::printf("time         %.4f s median of %u on %u threads (%.2f M terminals/s)\n",
+                stats["seconds"].get<double>(), stats["repeat"].get<unsigned>(),
+                stats["threads"].get<unsigned>(), stats["terminals_per_second"].get<double>() / 1e6);
 }
 
 } // namespace
 
 CLI::App* registerExpandCommand(CLI::App& app, ExpandOptions& o) {
     CLI::App* cmd = app.add_subcommand("expand", "Expand a grammar over footprints into a terminal set");
-    cmd->add_option("--grammar", o.grammarPath, "Grammar file (.grammar)")->required()->check(CLI::ExistingFile);
-    auto* footprints =
-        cmd->add_option("--footprints", o.footprintsPath, "GeoJSON footprints (not yet supported: use --demo)");
-    auto* demo = cmd->add_option("--demo", o.demoCount, "Expand N procedural demo footprints")->check(CLI::Range(1u, 10000000u));
+    cmd->add_option("--grammar", o.grammarPath, "Grammar file (.grammar)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    auto* footprints = cmd->add_option("--footprints", o.footprintsPath,
+                                       "GeoJSON footprints (not yet supported: use --demo)");
+    auto* demo = cmd->add_option("--demo", o.demoCount, "Expand N procedural demo footprints")
+                     ->check(CLI::Range(1u, 10000000u));
     footprints->excludes(demo);
     cmd->add_option("--param", o.params, "Override a parameter for every building: name=value");
     cmd->add_option("--threads", o.threads, "Worker threads (default: all)")->check(CLI::Range(1u, 1024u));
-    cmd->add_option("--repeat", o.repeat, "Time the expansion N times and report the median")->check(CLI::Range(1u, 1000u));
+    cmd->add_option("--repeat", o.repeat, "Time the expansion N times and report the median")
+        ->check(CLI::Range(1u, 1000u));
     cmd->add_option("--seed", o.seed, "Scene seed for footprints and stochastic rules");
     cmd->add_option("--out", o.outPath, "Write the terminal set to this file");
     cmd->add_flag("--stats", o.stats, "Print statistics");
@@ -136,7 +144,8 @@ CLI::App* registerExpandCommand(CLI::App& app, ExpandOptions& o) {
 
 int runExpandCommand(const ExpandOptions& options) {
     if (!options.footprintsPath.empty()) {
-        std::cerr << "hexlod expand: --footprints needs the GeoJSON importer, which is not built yet; use --demo N\n";
+        std::cerr << "hexlod expand: --footprints needs the GeoJSON importer, which is not built yet; use "
+                     "--demo N\n";
         return 2;
     }
     if (options.demoCount == 0) {
@@ -174,7 +183,8 @@ int runExpandCommand(const ExpandOptions& options) {
         b.parameters = grammar::resolveParameters(g, mine, ignored);
     }
 
-    const uint32_t threads = options.threads ? options.threads : static_cast<uint32_t>(tbb::info::default_concurrency());
+    const uint32_t threads =
+        options.threads ? options.threads : static_cast<uint32_t>(tbb::info::default_concurrency());
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     grammar::BatchInput input;
     input.grammar = &g;
@@ -199,7 +209,8 @@ int runExpandCommand(const ExpandOptions& options) {
         printStats(stats);
     }
     bool errors = timing.result.failed;
-    for (const grammar::BatchIssue& issue : timing.result.issues) errors = errors || grammar::issueIsError(issue.first.kind);
+    for (const grammar::BatchIssue& issue : timing.result.issues)
+        errors = errors || grammar::issueIsError(issue.first.kind);
     return errors ? 1 : 0;
 }
 

@@ -31,17 +31,21 @@ void foldIssues(const std::vector<BuildingOutput>& outputs, BatchResult& result)
     for (auto& [key, issue] : folded) result.issues.push_back(std::move(issue));
 }
 
-int wallMaterialParameter(const CompiledGrammar& grammar) { return grammar.findParameter("wall_material"); }
+int wallMaterialParameter(const CompiledGrammar& grammar) {
+    return grammar.findParameter("wall_material");
+}
 
 void gatherExtruded(const CompiledGrammar& grammar, const std::vector<BuildingOutput>& outputs,
-                    std::span<const BuildingInput> buildings, const std::vector<uint32_t>& order, ExtrudedSet& set) {
+                    std::span<const BuildingInput> buildings, const std::vector<uint32_t>& order,
+                    ExtrudedSet& set) {
     const int material = wallMaterialParameter(grammar);
     const std::vector<float> defaults = grammar.defaultParameters();
     for (size_t i = 0; i < outputs.size(); ++i) {
         const BuildingOutput& out = outputs[i];
         if (out.skipped) continue;
         const BuildingInput& in = buildings[order[i]];
-        const std::vector<float>& params = in.parameters.size() == grammar.params.size() ? in.parameters : defaults;
+        const std::vector<float>& params =
+            in.parameters.size() == grammar.params.size() ? in.parameters : defaults;
         ExtrudedBuilding b;
         b.building = in.id;
         b.firstVertex = static_cast<uint32_t>(set.footprints.size());
@@ -51,7 +55,8 @@ void gatherExtruded(const CompiledGrammar& grammar, const std::vector<BuildingOu
         b.firstParameter = static_cast<uint32_t>(set.parameters.size());
         b.baseElevation = out.baseElevation;
         b.height = out.height;
-        b.wallMaterial = material >= 0 ? static_cast<uint16_t>(std::clamp(params[material], 0.0f, 65535.0f)) : 0;
+        b.wallMaterial =
+            material >= 0 ? static_cast<uint16_t>(std::clamp(params[material], 0.0f, 65535.0f)) : 0;
         set.buildings.push_back(b);
         set.footprints.insert(set.footprints.end(), out.footprint.begin(), out.footprint.end());
         set.elements.insert(set.elements.end(), out.elements.begin(), out.elements.end());
@@ -60,7 +65,8 @@ void gatherExtruded(const CompiledGrammar& grammar, const std::vector<BuildingOu
 }
 
 // Counting sort by shape, stable in building order, so each shape is one contiguous range.
-void gatherTerminals(const CompiledGrammar& grammar, const std::vector<BuildingOutput>& outputs, TerminalSet& set) {
+void gatherTerminals(const CompiledGrammar& grammar, const std::vector<BuildingOutput>& outputs,
+                     TerminalSet& set) {
     const size_t shapes = grammar.shapes.size();
     set.countPerShape.assign(shapes, 0);
     for (const BuildingOutput& out : outputs) {
@@ -90,18 +96,21 @@ BatchResult expandBatch(const BatchInput& input) {
 
     const std::vector<uint32_t> order = orderById(input.buildings);
     std::vector<BuildingOutput> outputs(order.size());
-    tbb::enumerable_thread_specific<BuildingExpander> expanders(std::cref(grammar), std::cref(input.settings));
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, order.size(), 16), [&](const tbb::blocked_range<size_t>& range) {
-        BuildingExpander& expander = expanders.local();
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            if (i > 0 && input.buildings[order[i]].id == input.buildings[order[i - 1]].id) {
-                outputs[i].skipped = true;
-                outputs[i].issues.push_back({IssueKind::DuplicateBuilding, kNullRule, input.buildings[order[i]].id, {}});
-                continue;
+    tbb::enumerable_thread_specific<BuildingExpander> expanders(std::cref(grammar),
+                                                                std::cref(input.settings));
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, order.size(), 16), [&](const tbb::blocked_range<size_t>& range) {
+            BuildingExpander& expander = expanders.local();
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                if (i > 0 && input.buildings[order[i]].id == input.buildings[order[i - 1]].id) {
+                    outputs[i].skipped = true;
+                    outputs[i].issues.push_back(
+                        {IssueKind::DuplicateBuilding, kNullRule, input.buildings[order[i]].id, {}});
+                    continue;
+                }
+                expander.expand(input.buildings[order[i]], outputs[i]);
             }
-            expander.expand(input.buildings[order[i]], outputs[i]);
-        }
-    });
+        });
 
     foldIssues(outputs, result);
     uint64_t terminals = 0;

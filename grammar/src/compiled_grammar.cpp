@@ -8,24 +8,37 @@ namespace hexlod::grammar {
 
 const char* ruleOpName(RuleOp op) {
     switch (op) {
-    case RuleOp::Extrude: return "Extrude";
-    case RuleOp::Split: return "Split";
-    case RuleOp::Repeat: return "Repeat";
-    case RuleOp::Branch: return "Branch";
-    case RuleOp::Translate: return "Translate";
-    case RuleOp::Rotate: return "Rotate";
-    case RuleOp::Cond: return "Cond";
-    case RuleOp::Shape: return "Shape";
-    case RuleOp::Explode: return "Explode";
-    case RuleOp::Project: return "Project";
-    case RuleOp::Choose: return "Choose";
-    case RuleOp::Null: return "NULL";
+    case RuleOp::Extrude:
+        return "Extrude";
+    case RuleOp::Split:
+        return "Split";
+    case RuleOp::Repeat:
+        return "Repeat";
+    case RuleOp::Branch:
+        return "Branch";
+    case RuleOp::Translate:
+        return "Translate";
+    case RuleOp::Rotate:
+        return "Rotate";
+    case RuleOp::Cond:
+        return "Cond";
+    case RuleOp::Shape:
+        return "Shape";
+    case RuleOp::Explode:
+        return "Explode";
+    case RuleOp::Project:
+        return "Project";
+    case RuleOp::Choose:
+        return "Choose";
+    case RuleOp::Null:
+        return "NULL";
     }
     return "?";
 }
 
 namespace {
-template <typename Items, typename Name> int findByName(const Items& items, const std::string& wanted, Name name) {
+template <typename Items, typename Name>
+int findByName(const Items& items, const std::string& wanted, Name name) {
     for (size_t i = 0; i < items.size(); ++i) {
         if (name(items[i]) == wanted) return static_cast<int>(i);
     }
@@ -34,7 +47,8 @@ template <typename Items, typename Name> int findByName(const Items& items, cons
 } // namespace
 
 int CompiledGrammar::findParameter(const std::string& parameterName) const {
-    return findByName(params, parameterName, [](const ParameterInfo& p) -> const std::string& { return p.name; });
+    return findByName(params, parameterName,
+                      [](const ParameterInfo& p) -> const std::string& { return p.name; });
 }
 int CompiledGrammar::findShape(const std::string& shapeName) const {
     return findByName(shapes, shapeName, [](const ShapeInfo& s) -> const std::string& { return s.name; });
@@ -53,8 +67,8 @@ std::vector<float> CompiledGrammar::defaultParameters() const {
 std::string CompiledGrammar::where(uint32_t rule) const {
     if (rule >= ruleNames.size()) return "rule #" + std::to_string(rule);
     const SourceLocation& at = ruleLocations[rule];
-    return at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": rule '" + ruleNames[rule] +
-           "'";
+    return at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": rule '" +
+           ruleNames[rule] + "'";
 }
 
 CompiledGrammar compileGrammarFile(const std::string& path, DiagnosticList& diagnostics) {
@@ -68,7 +82,8 @@ CompiledGrammar compileGrammarFile(const std::string& path, DiagnosticList& diag
     return compileGrammar(text.str(), path, diagnostics);
 }
 
-std::vector<float> resolveParameters(const CompiledGrammar& grammar, const std::vector<ParameterOverride>& overrides,
+std::vector<float> resolveParameters(const CompiledGrammar& grammar,
+                                     const std::vector<ParameterOverride>& overrides,
                                      DiagnosticList& diagnostics) {
     std::vector<float> values = grammar.defaultParameters();
     for (const ParameterOverride& o : overrides) {
@@ -79,13 +94,14 @@ std::vector<float> resolveParameters(const CompiledGrammar& grammar, const std::
         }
         const ParameterInfo& info = grammar.params[index];
         if (!std::isfinite(o.value)) {
-            diagnostics.error({}, "parameter '" + o.name + "' must be a finite number, got " + std::to_string(o.value));
+            diagnostics.error({}, "parameter '" + o.name + "' must be a finite number, got " +
+                                      std::to_string(o.value));
             continue;
         }
         if (o.value < info.minValue || o.value > info.maxValue) {
             std::ostringstream message;
-            message << "parameter '" << o.name << "' = " << o.value << " is outside its range [" << info.minValue << ", "
-                    << info.maxValue << "]";
+            message << "parameter '" << o.name << "' = " << o.value << " is outside its range ["
+                    << info.minValue << ", " << info.maxValue << "]";
             diagnostics.error({}, message.str());
             continue;
         }

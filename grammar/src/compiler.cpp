@@ -16,13 +16,15 @@ void compileParameters(const GrammarAst& ast, CompiledGrammar& grammar, Diagnost
     for (const ParamDecl& param : ast.params) {
         const auto [it, inserted] = seen.emplace(param.name, param.location);
         if (!inserted) {
-            diagnostics.error(param.location, "parameter '" + param.name + "' is declared twice (first at line " +
+            diagnostics.error(param.location, "parameter '" + param.name +
+                                                  "' is declared twice (first at line " +
                                                   std::to_string(it->second.line) + ")");
             continue;
         }
         if (isReservedExpressionName(param.name)) {
-            diagnostics.error(param.location, "parameter '" + param.name + "' would hide the accessor or function of "
-                                              "that name; choose another name");
+            diagnostics.error(param.location, "parameter '" + param.name +
+                                                  "' would hide the accessor or function of "
+                                                  "that name; choose another name");
             continue;
         }
         if (!(param.minValue <= param.maxValue)) {
@@ -30,7 +32,8 @@ void compileParameters(const GrammarAst& ast, CompiledGrammar& grammar, Diagnost
             continue;
         }
         if (!(param.defaultValue >= param.minValue && param.defaultValue <= param.maxValue)) {
-            diagnostics.error(param.location, "the default of parameter '" + param.name + "' lies outside its range");
+            diagnostics.error(param.location,
+                              "the default of parameter '" + param.name + "' lies outside its range");
             continue;
         }
         grammar.params.push_back({param.name, static_cast<float>(param.defaultValue),
@@ -44,9 +47,12 @@ bool applyShapeField(const ShapeField& field, ShapeInfo& shape, DiagnosticList& 
         return ok;
     };
     const double v = field.value;
-    if (field.name == "width") return require(v > 0 && v < 1e5, "in (0, 1e5) metres") && (shape.width = float(v), true);
-    if (field.name == "height") return require(v > 0 && v < 1e5, "in (0, 1e5) metres") && (shape.height = float(v), true);
-    if (field.name == "depth") return require(v >= 0 && v < 1e5, "in [0, 1e5) metres") && (shape.depth = float(v), true);
+    if (field.name == "width")
+        return require(v > 0 && v < 1e5, "in (0, 1e5) metres") && (shape.width = float(v), true);
+    if (field.name == "height")
+        return require(v > 0 && v < 1e5, "in (0, 1e5) metres") && (shape.height = float(v), true);
+    if (field.name == "depth")
+        return require(v >= 0 && v < 1e5, "in [0, 1e5) metres") && (shape.depth = float(v), true);
     if (field.name == "depth_ratio") {
         return require(v >= 0 && v <= 10, "in [0, 10]") && (shape.depthRatio = float(v), true);
     }
@@ -78,7 +84,8 @@ void compileShapes(const GrammarAst& ast, CompiledGrammar& grammar, DiagnosticLi
             hasTriangles = hasTriangles || field.name == "triangles";
         }
         if (!hasTriangles) {
-            diagnostics.error(decl.location, "shape '" + decl.name + "' needs a triangle count (triangles = N)");
+            diagnostics.error(decl.location,
+                              "shape '" + decl.name + "' needs a triangle count (triangles = N)");
             ok = false;
         }
         if (ok) grammar.shapes.push_back(shape);
@@ -136,7 +143,9 @@ uint64_t hashBytes(uint64_t hash, const void* data, size_t size) {
     for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ull; // FNV-1a
     return hash;
 }
-template <typename T> uint64_t hashValue(uint64_t hash, const T& value) { return hashBytes(hash, &value, sizeof(T)); }
+template <typename T> uint64_t hashValue(uint64_t hash, const T& value) {
+    return hashBytes(hash, &value, sizeof(T));
+}
 uint64_t hashString(uint64_t hash, const std::string& s) {
     return hashBytes(hashValue(hash, s.size()), s.data(), s.size());
 }
@@ -145,13 +154,14 @@ uint64_t hashString(uint64_t hash, const std::string& s) {
 uint64_t contentHash(const CompiledGrammar& g) {
     uint64_t h = 0xcbf29ce484222325ull;
     for (const CompiledRule& r : g.rules) {
-        const uint32_t fields[] = {uint32_t(r.op),         uint32_t(r.axis),       uint32_t(r.secondAxis),
-                                   uint32_t(r.mode),       uint32_t(r.pivot),      uint32_t(r.extrudedStop),
-                                   r.shape,                r.firstArgument,        r.argumentCount,
-                                   r.firstSuccessor,       r.successorCount};
+        const uint32_t fields[] = {uint32_t(r.op),   uint32_t(r.axis),  uint32_t(r.secondAxis),
+                                   uint32_t(r.mode), uint32_t(r.pivot), uint32_t(r.extrudedStop),
+                                   r.shape,          r.firstArgument,   r.argumentCount,
+                                   r.firstSuccessor, r.successorCount};
         h = hashBytes(h, fields, sizeof(fields));
     }
-    for (const RuleArgumentRef& a : g.arguments) h = hashValue(hashValue(h, a.expression), uint8_t(a.relative));
+    for (const RuleArgumentRef& a : g.arguments)
+        h = hashValue(hashValue(h, a.expression), uint8_t(a.relative));
     h = hashBytes(h, g.successors.data(), g.successors.size() * sizeof(uint32_t));
     for (const Expression& e : g.expressions) {
         const uint32_t fields[] = {e.first, e.count, uint32_t(e.isBoolean), uint32_t(e.isConstant)};
@@ -170,7 +180,8 @@ uint64_t contentHash(const CompiledGrammar& g) {
 
 } // namespace
 
-CompiledGrammar compileGrammar(std::string_view source, const std::string& fileName, DiagnosticList& diagnostics) {
+CompiledGrammar compileGrammar(std::string_view source, const std::string& fileName,
+                               DiagnosticList& diagnostics) {
     const GrammarAst ast = parseGrammar(source, fileName, diagnostics);
     if (diagnostics.hasErrors()) return {};
 
@@ -181,13 +192,16 @@ CompiledGrammar compileGrammar(std::string_view source, const std::string& fileN
 
     RuleIndexMap ruleIndex;
     for (const RuleDecl& rule : ast.rules) {
-        const auto [it, inserted] = ruleIndex.emplace(rule.name, static_cast<uint32_t>(grammar.ruleNames.size()));
+        const auto [it, inserted] =
+            ruleIndex.emplace(rule.name, static_cast<uint32_t>(grammar.ruleNames.size()));
         if (!inserted) {
             diagnostics.error(rule.location, "rule '" + rule.name + "' is defined twice (first at line " +
-                                                 std::to_string(grammar.ruleLocations[it->second].line) + ")");
+                                                 std::to_string(grammar.ruleLocations[it->second].line) +
+                                                 ")");
             continue;
         }
-        if (rule.name == "NULL") diagnostics.error(rule.location, "'NULL' is reserved and cannot name a rule");
+        if (rule.name == "NULL")
+            diagnostics.error(rule.location, "'NULL' is reserved and cannot name a rule");
         grammar.ruleNames.push_back(rule.name);
         grammar.ruleLocations.push_back(rule.location);
     }

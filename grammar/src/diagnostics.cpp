@@ -6,7 +6,8 @@ std::string formatDiagnostic(const Diagnostic& diagnostic) {
     std::string out;
     if (!diagnostic.location.file.empty() || diagnostic.location.line > 0) {
         out += diagnostic.location.file.empty() ? "<input>" : diagnostic.location.file;
-        out += ':' + std::to_string(diagnostic.location.line) + ':' + std::to_string(diagnostic.location.column) + ": ";
+        out += ':' + std::to_string(diagnostic.location.line) + ':' +
+               std::to_string(diagnostic.location.column) + ": ";
     }
     out += diagnostic.severity == Severity::Error ? "error: " : "warning: ";
     out += diagnostic.message;

@@ -27,7 +27,9 @@ constexpr float kDegrees = 3.14159265358979323846f / 180.0f;
 constexpr uint32_t kMarginKeySpace = 0x40000000u;
 constexpr uint32_t kMaxBranch = 1024;
 
-bool finite3(float a, float b, float c) { return std::isfinite(a) && std::isfinite(b) && std::isfinite(c); }
+bool finite3(float a, float b, float c) {
+    return std::isfinite(a) && std::isfinite(b) && std::isfinite(c);
+}
 } // namespace
 
 struct BuildingExpander::Impl {
@@ -89,7 +91,9 @@ struct BuildingExpander::Impl {
         return evaluate(&grammar.code[e.first], e.count, {params, accessors, combineKey(s.key, slot)});
     }
 
-    uint32_t successor(const CompiledRule& rule, uint32_t i) const { return grammar.successors[rule.firstSuccessor + i]; }
+    uint32_t successor(const CompiledRule& rule, uint32_t i) const {
+        return grammar.successors[rule.firstSuccessor + i];
+    }
 
     void push(const Scope& child, uint32_t rule, bool belowStop, uint32_t parentRule) {
         if (rule == kNullRule) return;
@@ -130,8 +134,8 @@ struct BuildingExpander::Impl {
                 issue(IssueKind::InvalidSize, ruleIndex, "depth ratio");
             }
         }
-        out->terminals.push_back(
-            packTerminal(s.origin, s.x, s.y, s.z, glm::vec2(s.size.x, s.size.y), ratio, rule.shape, building));
+        out->terminals.push_back(packTerminal(s.origin, s.x, s.y, s.z, glm::vec2(s.size.x, s.size.y), ratio,
+                                              rule.shape, building));
     }
 
     void extrude(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
@@ -158,7 +162,8 @@ struct BuildingExpander::Impl {
         }
         top.size.x = s.size.x * scale;
         if (s.dimension == 2) top.size.y = s.size.y * scale;
-        top.origin = center - top.x * (0.5f * top.size.x) - top.y * (0.5f * top.size.y) - top.z * (0.5f * top.size.z);
+        top.origin =
+            center - top.x * (0.5f * top.size.x) - top.y * (0.5f * top.size.y) - top.z * (0.5f * top.size.z);
         push(top, successor(rule, 1), below, r);
         push(side, successor(rule, 0), below, r);
     }
@@ -194,10 +199,13 @@ struct BuildingExpander::Impl {
 
     void repeat(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
         const int axis = static_cast<int>(rule.axis);
-        const uint32_t budget = settings.limits.maxOperationsPerAtom - std::min(atomOperations, settings.limits.maxOperationsPerAtom);
+        const uint32_t budget = settings.limits.maxOperationsPerAtom -
+                                std::min(atomOperations, settings.limits.maxOperationsPerAtom);
         RepeatLayout layout;
-        const SubdivisionStatus status = repeatLayout(s.size[axis], argument(rule, 0, s), rule.mode, budget, layout);
-        if (status == SubdivisionStatus::InvalidSize) return issue(IssueKind::InvalidSize, r, "Repeat tile size");
+        const SubdivisionStatus status =
+            repeatLayout(s.size[axis], argument(rule, 0, s), rule.mode, budget, layout);
+        if (status == SubdivisionStatus::InvalidSize)
+            return issue(IssueKind::InvalidSize, r, "Repeat tile size");
         if (status == SubdivisionStatus::TooManyTiles) return issue(IssueKind::TooManyTiles, r);
         const glm::vec3 direction = s.axis(axis);
         if (rule.successorCount == 2 && layout.margin > 0.0f) {
@@ -233,7 +241,8 @@ struct BuildingExpander::Impl {
             copy.level = static_cast<uint16_t>(s.level + 1);
             copy.index = static_cast<int32_t>(i);
             copy.count = static_cast<int32_t>(n);
-            push(copy, successor(rule, rule.successorCount == 1 ? 0 : std::min(i, rule.successorCount - 1)), below, r);
+            push(copy, successor(rule, rule.successorCount == 1 ? 0 : std::min(i, rule.successorCount - 1)),
+                 below, r);
         }
     }
 
@@ -331,22 +340,34 @@ struct BuildingExpander::Impl {
         const Scope& s = item.scope;
         const bool below = item.belowStop;
         switch (rule.op) {
-        case RuleOp::Extrude: return extrude(s, rule, r, below);
-        case RuleOp::Split: return split(s, rule, r, below);
-        case RuleOp::Repeat: return repeat(s, rule, r, below);
-        case RuleOp::Branch: return branch(s, rule, r, below);
-        case RuleOp::Translate: return translate(s, rule, r, below);
-        case RuleOp::Rotate: return rotate(s, rule, r, below);
+        case RuleOp::Extrude:
+            return extrude(s, rule, r, below);
+        case RuleOp::Split:
+            return split(s, rule, r, below);
+        case RuleOp::Repeat:
+            return repeat(s, rule, r, below);
+        case RuleOp::Branch:
+            return branch(s, rule, r, below);
+        case RuleOp::Translate:
+            return translate(s, rule, r, below);
+        case RuleOp::Rotate:
+            return rotate(s, rule, r, below);
         case RuleOp::Cond: {
             const bool yes = argument(rule, 0, s) != 0.0f;
-            if (yes || rule.successorCount == 2) push(childOf(s, yes ? 0 : 1), successor(rule, yes ? 0 : 1), below, r);
+            if (yes || rule.successorCount == 2)
+                push(childOf(s, yes ? 0 : 1), successor(rule, yes ? 0 : 1), below, r);
             return;
         }
-        case RuleOp::Shape: return emit(s, rule, r);
-        case RuleOp::Explode: return explode(s, rule, r, below);
-        case RuleOp::Project: return project(s, rule, r, below);
-        case RuleOp::Choose: return choose(s, rule, r, below);
-        case RuleOp::Null: return;
+        case RuleOp::Shape:
+            return emit(s, rule, r);
+        case RuleOp::Explode:
+            return explode(s, rule, r, below);
+        case RuleOp::Project:
+            return project(s, rule, r, below);
+        case RuleOp::Choose:
+            return choose(s, rule, r, below);
+        case RuleOp::Null:
+            return;
         }
     }
 
@@ -374,8 +395,8 @@ struct BuildingExpander::Impl {
             accessorScope = nullptr;
             if (++atomOperations > settings.limits.maxOperationsPerAtom) {
                 issue(IssueKind::AtomOperationCap, item.rule,
-                      "more than " + std::to_string(settings.limits.maxOperationsPerAtom) + " rule applications on atom " +
-                          std::to_string(atom));
+                      "more than " + std::to_string(settings.limits.maxOperationsPerAtom) +
+                          " rule applications on atom " + std::to_string(atom));
                 atomAborted = true;
                 break;
             }
@@ -426,8 +447,12 @@ struct BuildingExpander::Impl {
 
 BuildingExpander::BuildingExpander(const CompiledGrammar& grammar, const ExpansionSettings& settings)
     : impl_(new Impl(grammar, settings)) {}
-BuildingExpander::~BuildingExpander() { delete impl_; }
+BuildingExpander::~BuildingExpander() {
+    delete impl_;
+}
 
-void BuildingExpander::expand(const BuildingInput& building, BuildingOutput& out) { impl_->expand(building, out); }
+void BuildingExpander::expand(const BuildingInput& building, BuildingOutput& out) {
+    impl_->expand(building, out);
+}
 
 } // namespace hexlod::grammar

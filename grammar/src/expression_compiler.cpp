@@ -40,14 +40,17 @@ struct FunctionName {
     int arity;
 };
 constexpr FunctionName kFunctions[] = {
-    {"min", Opcode::Min, 2},    {"max", Opcode::Max, 2},   {"abs", Opcode::Abs, 1},       {"floor", Opcode::Floor, 1},
-    {"ceil", Opcode::Ceil, 1},  {"round", Opcode::Round, 1}, {"sqrt", Opcode::Sqrt, 1}, {"sin", Opcode::Sin, 1},
-    {"cos", Opcode::Cos, 1},    {"pow", Opcode::Pow, 2},   {"clamp", Opcode::Clamp, 3},   {"rand", Opcode::Random, 2},
+    {"min", Opcode::Min, 2},     {"max", Opcode::Max, 2},     {"abs", Opcode::Abs, 1},
+    {"floor", Opcode::Floor, 1}, {"ceil", Opcode::Ceil, 1},   {"round", Opcode::Round, 1},
+    {"sqrt", Opcode::Sqrt, 1},   {"sin", Opcode::Sin, 1},     {"cos", Opcode::Cos, 1},
+    {"pow", Opcode::Pow, 2},     {"clamp", Opcode::Clamp, 3}, {"rand", Opcode::Random, 2},
 };
 
 constexpr float kPi = 3.14159265358979323846f;
 
-const char* typeName(ValueType type) { return type == ValueType::Number ? "a number" : "a boolean"; }
+const char* typeName(ValueType type) {
+    return type == ValueType::Number ? "a number" : "a boolean";
+}
 
 class ExpressionCompiler {
 public:
@@ -62,11 +65,16 @@ public:
         case ExprNode::Kind::Number:
             push(Opcode::PushConstant, static_cast<float>(node.number));
             return ValueType::Number;
-        case ExprNode::Kind::Name: return emitName(node);
-        case ExprNode::Kind::Unary: return emitUnary(node, depth);
-        case ExprNode::Kind::Binary: return emitBinary(node, depth);
-        case ExprNode::Kind::Ternary: return emitTernary(node, depth);
-        case ExprNode::Kind::Call: return emitCall(node, depth);
+        case ExprNode::Kind::Name:
+            return emitName(node);
+        case ExprNode::Kind::Unary:
+            return emitUnary(node, depth);
+        case ExprNode::Kind::Binary:
+            return emitBinary(node, depth);
+        case ExprNode::Kind::Ternary:
+            return emitTernary(node, depth);
+        case ExprNode::Kind::Call:
+            return emitCall(node, depth);
         }
         return std::nullopt;
     }
@@ -118,12 +126,13 @@ private:
         return error(node, "unknown parameter or accessor '" + node.name + "'");
     }
 
-    std::optional<ValueType> expectType(const ExprNode& node, int depth, ValueType expected, const char* what) {
+    std::optional<ValueType> expectType(const ExprNode& node, int depth, ValueType expected,
+                                        const char* what) {
         const std::optional<ValueType> type = emit(node, depth);
         if (!type) return std::nullopt;
         if (*type != expected) {
-            return error(node, std::string("type error: ") + what + " needs " + typeName(expected) + ", found " +
-                                   typeName(*type));
+            return error(node, std::string("type error: ") + what + " needs " + typeName(expected) +
+                                   ", found " + typeName(*type));
         }
         return type;
     }
@@ -140,28 +149,52 @@ private:
         Opcode op = Opcode::Add;
         ValueType operand = ValueType::Number, result = ValueType::Number;
         switch (node.op) {
-        case TokenKind::Plus: op = Opcode::Add; break;
-        case TokenKind::Minus: op = Opcode::Subtract; break;
-        case TokenKind::Star: op = Opcode::Multiply; break;
-        case TokenKind::Slash: op = Opcode::Divide; break;
-        case TokenKind::Percent: op = Opcode::Modulo; break;
-        case TokenKind::Less: op = Opcode::Less, result = ValueType::Boolean; break;
-        case TokenKind::LessEqual: op = Opcode::LessEqual, result = ValueType::Boolean; break;
-        case TokenKind::Greater: op = Opcode::Greater, result = ValueType::Boolean; break;
-        case TokenKind::GreaterEqual: op = Opcode::GreaterEqual, result = ValueType::Boolean; break;
-        case TokenKind::AndAnd: op = Opcode::And, operand = result = ValueType::Boolean; break;
-        case TokenKind::OrOr: op = Opcode::Or, operand = result = ValueType::Boolean; break;
+        case TokenKind::Plus:
+            op = Opcode::Add;
+            break;
+        case TokenKind::Minus:
+            op = Opcode::Subtract;
+            break;
+        case TokenKind::Star:
+            op = Opcode::Multiply;
+            break;
+        case TokenKind::Slash:
+            op = Opcode::Divide;
+            break;
+        case TokenKind::Percent:
+            op = Opcode::Modulo;
+            break;
+        case TokenKind::Less:
+            op = Opcode::Less, result = ValueType::Boolean;
+            break;
+        case TokenKind::LessEqual:
+            op = Opcode::LessEqual, result = ValueType::Boolean;
+            break;
+        case TokenKind::Greater:
+            op = Opcode::Greater, result = ValueType::Boolean;
+            break;
+        case TokenKind::GreaterEqual:
+            op = Opcode::GreaterEqual, result = ValueType::Boolean;
+            break;
+        case TokenKind::AndAnd:
+            op = Opcode::And, operand = result = ValueType::Boolean;
+            break;
+        case TokenKind::OrOr:
+            op = Opcode::Or, operand = result = ValueType::Boolean;
+            break;
         case TokenKind::EqualEqual:
         case TokenKind::NotEqual: {
             // Equality compares two values of the same type, numbers or booleans.
             const std::optional<ValueType> left = emit(*node.children[0], depth);
             if (!left) return std::nullopt;
-            const char* what = node.op == TokenKind::EqualEqual ? "the right side of '=='" : "the right side of '!='";
+            const char* what =
+                node.op == TokenKind::EqualEqual ? "the right side of '=='" : "the right side of '!='";
             if (!expectType(*node.children[1], depth + 1, *left, what)) return std::nullopt;
             push(node.op == TokenKind::EqualEqual ? Opcode::Equal : Opcode::NotEqual, 0.0f);
             return ValueType::Boolean;
         }
-        default: return error(node, "unsupported operator");
+        default:
+            return error(node, "unsupported operator");
         }
         const std::string operatorName = std::string("operator ") + tokenKindName(node.op);
         if (!expectType(*node.children[0], depth, operand, operatorName.c_str())) return std::nullopt;
@@ -171,10 +204,12 @@ private:
     }
 
     std::optional<ValueType> emitTernary(const ExprNode& node, int depth) {
-        if (!expectType(*node.children[0], depth, ValueType::Boolean, "the condition of '?:'")) return std::nullopt;
+        if (!expectType(*node.children[0], depth, ValueType::Boolean, "the condition of '?:'"))
+            return std::nullopt;
         const std::optional<ValueType> whenTrue = emit(*node.children[1], depth + 1);
         if (!whenTrue) return std::nullopt;
-        if (!expectType(*node.children[2], depth + 2, *whenTrue, "the second branch of '?:'")) return std::nullopt;
+        if (!expectType(*node.children[2], depth + 2, *whenTrue, "the second branch of '?:'"))
+            return std::nullopt;
         push(Opcode::Select, 0.0f);
         return whenTrue;
     }
@@ -188,7 +223,8 @@ private:
             }
             for (size_t i = 0; i < node.children.size(); ++i) {
                 const std::string what = "argument " + std::to_string(i + 1) + " of " + node.name + "()";
-                if (!expectType(*node.children[i], depth + static_cast<int>(i), ValueType::Number, what.c_str())) {
+                if (!expectType(*node.children[i], depth + static_cast<int>(i), ValueType::Number,
+                                what.c_str())) {
                     return std::nullopt;
                 }
             }
@@ -215,14 +251,15 @@ bool isReservedExpressionName(const std::string& name) {
     return name == "pi" || name == "true" || name == "false";
 }
 
-std::optional<uint32_t> compileExpression(const ExprNode& node, ValueType expected, const std::string& context,
-                                          CompiledGrammar& grammar, DiagnosticList& diagnostics) {
+std::optional<uint32_t> compileExpression(const ExprNode& node, ValueType expected,
+                                          const std::string& context, CompiledGrammar& grammar,
+                                          DiagnosticList& diagnostics) {
     ExpressionCompiler compiler(grammar, diagnostics);
     const std::optional<ValueType> type = compiler.emit(node, 0);
     if (!type) return std::nullopt;
     if (*type != expected) {
-        diagnostics.error(node.location, "type error: " + context + " needs " + typeName(expected) + ", found " +
-                                             typeName(*type));
+        diagnostics.error(node.location, "type error: " + context + " needs " + typeName(expected) +
+                                             ", found " + typeName(*type));
         return std::nullopt;
     }
     Expression expression;
@@ -230,7 +267,8 @@ std::optional<uint32_t> compileExpression(const ExprNode& node, ValueType expect
     if (!compiler.dependsOnInputs) {
         // Folding keeps constant sizes off the hot path: the expander reads constantValue.
         expression.isConstant = true;
-        expression.constantValue = evaluate(compiler.code.data(), static_cast<uint32_t>(compiler.code.size()), {});
+        expression.constantValue =
+            evaluate(compiler.code.data(), static_cast<uint32_t>(compiler.code.size()), {});
         compiler.code.clear();
         compiler.code.push_back({Opcode::PushConstant, {}});
         compiler.code.back().operand.value = expression.constantValue;

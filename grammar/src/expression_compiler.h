@@ -14,8 +14,9 @@ enum class ValueType : uint8_t { Number, Boolean };
 // Appends the expression's code to `grammar` and returns its index in grammar.expressions,
 // or nothing after reporting the error. `context` names the place for messages, for
 // example "the height of Extrude".
-std::optional<uint32_t> compileExpression(const ExprNode& node, ValueType expected, const std::string& context,
-                                          CompiledGrammar& grammar, DiagnosticList& diagnostics);
+std::optional<uint32_t> compileExpression(const ExprNode& node, ValueType expected,
+                                          const std::string& context, CompiledGrammar& grammar,
+                                          DiagnosticList& diagnostics);
 
 // True for names that expressions resolve to accessors, constants or functions; parameters
 // may not take them.

@@ -6,7 +6,9 @@
 namespace hexlod::grammar {
 namespace {
 
-double cross(const glm::dvec2& a, const glm::dvec2& b) { return a.x * b.y - a.y * b.x; }
+double cross(const glm::dvec2& a, const glm::dvec2& b) {
+    return a.x * b.y - a.y * b.x;
+}
 
 double signedArea(const std::vector<glm::dvec2>& p) {
     // Shoelace relative to the first point keeps precision far from the origin.
@@ -29,8 +31,8 @@ bool segmentsMeet(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
     const int o1 = orientation(a, b, c), o2 = orientation(a, b, d);
     const int o3 = orientation(c, d, a), o4 = orientation(c, d, b);
     if (o1 != o2 && o3 != o4) return true;
-    return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) || (o3 == 0 && onSegment(c, d, a)) ||
-           (o4 == 0 && onSegment(c, d, b));
+    return (o1 == 0 && onSegment(a, b, c)) || (o2 == 0 && onSegment(a, b, d)) ||
+           (o3 == 0 && onSegment(c, d, a)) || (o4 == 0 && onSegment(c, d, b));
 }
 
 } // namespace
@@ -70,9 +72,11 @@ bool cleanFootprint(const std::vector<glm::dvec2>& raw, CleanFootprint& out, std
     std::vector<glm::dvec2> points;
     points.reserve(raw.size());
     for (const glm::dvec2& point : raw) {
-        if (points.empty() || glm::length(point - points.back()) > duplicateTolerance) points.push_back(point);
+        if (points.empty() || glm::length(point - points.back()) > duplicateTolerance)
+            points.push_back(point);
     }
-    while (points.size() > 1 && glm::length(points.front() - points.back()) <= duplicateTolerance) points.pop_back();
+    while (points.size() > 1 && glm::length(points.front() - points.back()) <= duplicateTolerance)
+        points.pop_back();
 
     // Drop points that lie on the line through their neighbours (including spikes that
     // double back); repeat until stable because each removal can expose another.
@@ -83,8 +87,9 @@ bool cleanFootprint(const std::vector<glm::dvec2>& raw, CleanFootprint& out, std
             const glm::dvec2& next = points[(i + 1) % points.size()];
             const glm::dvec2 base = next - prev;
             const double baseLength = glm::length(base);
-            const double distance = baseLength > duplicateTolerance ? std::fabs(cross(base, points[i] - prev)) / baseLength
-                                                                    : glm::length(points[i] - prev);
+            const double distance = baseLength > duplicateTolerance
+                                        ? std::fabs(cross(base, points[i] - prev)) / baseLength
+                                        : glm::length(points[i] - prev);
             if (distance <= collinearTolerance) {
                 points.erase(points.begin() + static_cast<std::ptrdiff_t>(i));
                 changed = true;

@@ -7,85 +7,163 @@ namespace hexlod::grammar {
 
 const char* tokenKindName(TokenKind kind) {
     switch (kind) {
-    case TokenKind::Identifier: return "identifier";
-    case TokenKind::Number: return "number";
-    case TokenKind::Arrow: return "'->'";
-    case TokenKind::LParen: return "'('";
-    case TokenKind::RParen: return "')'";
-    case TokenKind::LBrace: return "'{'";
-    case TokenKind::RBrace: return "'}'";
-    case TokenKind::LBracket: return "'['";
-    case TokenKind::RBracket: return "']'";
-    case TokenKind::Comma: return "','";
-    case TokenKind::Semicolon: return "';'";
-    case TokenKind::Colon: return "':'";
-    case TokenKind::Tilde: return "'~'";
-    case TokenKind::Plus: return "'+'";
-    case TokenKind::Minus: return "'-'";
-    case TokenKind::Star: return "'*'";
-    case TokenKind::Slash: return "'/'";
-    case TokenKind::Percent: return "'%'";
-    case TokenKind::Less: return "'<'";
-    case TokenKind::LessEqual: return "'<='";
-    case TokenKind::Greater: return "'>'";
-    case TokenKind::GreaterEqual: return "'>='";
-    case TokenKind::EqualEqual: return "'=='";
-    case TokenKind::NotEqual: return "'!='";
-    case TokenKind::Assign: return "'='";
-    case TokenKind::AndAnd: return "'&&'";
-    case TokenKind::OrOr: return "'||'";
-    case TokenKind::Bang: return "'!'";
-    case TokenKind::Question: return "'?'";
-    case TokenKind::End: return "end of file";
+    case TokenKind::Identifier:
+        return "identifier";
+    case TokenKind::Number:
+        return "number";
+    case TokenKind::Arrow:
+        return "'->'";
+    case TokenKind::LParen:
+        return "'('";
+    case TokenKind::RParen:
+        return "')'";
+    case TokenKind::LBrace:
+        return "'{'";
+    case TokenKind::RBrace:
+        return "'}'";
+    case TokenKind::LBracket:
+        return "'['";
+    case TokenKind::RBracket:
+        return "']'";
+    case TokenKind::Comma:
+        return "','";
+    case TokenKind::Semicolon:
+        return "';'";
+    case TokenKind::Colon:
+        return "':'";
+    case TokenKind::Tilde:
+        return "'~'";
+    case TokenKind::Plus:
+        return "'+'";
+    case TokenKind::Minus:
+        return "'-'";
+    case TokenKind::Star:
+        return "'*'";
+    case TokenKind::Slash:
+        return "'/'";
+    case TokenKind::Percent:
+        return "'%'";
+    case TokenKind::Less:
+        return "'<'";
+    case TokenKind::LessEqual:
+        return "'<='";
+    case TokenKind::Greater:
+        return "'>'";
+    case TokenKind::GreaterEqual:
+        return "'>='";
+    case TokenKind::EqualEqual:
+        return "'=='";
+    case TokenKind::NotEqual:
+        return "'!='";
+    case TokenKind::Assign:
+        return "'='";
+    case TokenKind::AndAnd:
+        return "'&&'";
+    case TokenKind::OrOr:
+        return "'||'";
+    case TokenKind::Bang:
+        return "'!'";
+    case TokenKind::Question:
+        return "'?'";
+    case TokenKind::End:
+        return "end of file";
     }
     return "token";
 }
 
 namespace {
 
-bool isIdentStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
-bool isIdentChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-bool isDigit(char c) { return c >= '0' && c <= '9'; }
+bool isIdentStart(char c) {
+    return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
+}
+bool isIdentChar(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+bool isDigit(char c) {
+    return c >= '0' && c <= '9';
+}
 
 struct TwoCharToken {
     char first, second;
     TokenKind kind;
 };
 constexpr TwoCharToken kTwoCharTokens[] = {
-    {'-', '>', TokenKind::Arrow},     {'<', '=', TokenKind::LessEqual}, {'>', '=', TokenKind::GreaterEqual},
-    {'=', '=', TokenKind::EqualEqual}, {'!', '=', TokenKind::NotEqual}, {'&', '&', TokenKind::AndAnd},
+    {'-', '>', TokenKind::Arrow},      {'<', '=', TokenKind::LessEqual}, {'>', '=', TokenKind::GreaterEqual},
+    {'=', '=', TokenKind::EqualEqual}, {'!', '=', TokenKind::NotEqual},  {'&', '&', TokenKind::AndAnd},
     {'|', '|', TokenKind::OrOr},
 };
 
 bool singleCharToken(char c, TokenKind& kind) {
     switch (c) {
-    case '(': kind = TokenKind::LParen; return true;
-    case ')': kind = TokenKind::RParen; return true;
-    case '{': kind = TokenKind::LBrace; return true;
-    case '}': kind = TokenKind::RBrace; return true;
-    case '[': kind = TokenKind::LBracket; return true;
-    case ']': kind = TokenKind::RBracket; return true;
-    case ',': kind = TokenKind::Comma; return true;
-    case ';': kind = TokenKind::Semicolon; return true;
-    case ':': kind = TokenKind::Colon; return true;
-    case '~': kind = TokenKind::Tilde; return true;
-    case '+': kind = TokenKind::Plus; return true;
-    case '-': kind = TokenKind::Minus; return true;
-    case '*': kind = TokenKind::Star; return true;
-    case '/': kind = TokenKind::Slash; return true;
-    case '%': kind = TokenKind::Percent; return true;
-    case '<': kind = TokenKind::Less; return true;
-    case '>': kind = TokenKind::Greater; return true;
-    case '=': kind = TokenKind::Assign; return true;
-    case '!': kind = TokenKind::Bang; return true;
-    case '?': kind = TokenKind::Question; return true;
-    default: return false;
+    case '(':
+        kind = TokenKind::LParen;
+        return true;
+    case ')':
+        kind = TokenKind::RParen;
+        return true;
+    case '{':
+        kind = TokenKind::LBrace;
+        return true;
+    case '}':
+        kind = TokenKind::RBrace;
+        return true;
+    case '[':
+        kind = TokenKind::LBracket;
+        return true;
+    case ']':
+        kind = TokenKind::RBracket;
+        return true;
+    case ',':
+        kind = TokenKind::Comma;
+        return true;
+    case ';':
+        kind = TokenKind::Semicolon;
+        return true;
+    case ':':
+        kind = TokenKind::Colon;
+        return true;
+    case '~':
+        kind = TokenKind::Tilde;
+        return true;
+    case '+':
+        kind = TokenKind::Plus;
+        return true;
+    case '-':
+        kind = TokenKind::Minus;
+        return true;
+    case '*':
+        kind = TokenKind::Star;
+        return true;
+    case '/':
+        kind = TokenKind::Slash;
+        return true;
+    case '%':
+        kind = TokenKind::Percent;
+        return true;
+    case '<':
+        kind = TokenKind::Less;
+        return true;
+    case '>':
+        kind = TokenKind::Greater;
+        return true;
+    case '=':
+        kind = TokenKind::Assign;
+        return true;
+    case '!':
+        kind = TokenKind::Bang;
+        return true;
+    case '?':
+        kind = TokenKind::Question;
+        return true;
+    default:
+        return false;
     }
 }
 
 } // namespace
 
-std::vector<Token> tokenize(std::string_view source, const std::string& fileName, DiagnosticList& diagnostics) {
+std::vector<Token> tokenize(std::string_view source, const std::string& fileName,
+                            DiagnosticList& diagnostics) {
     std::vector<Token> tokens;
     size_t i = 0;
     uint32_t line = 1, column = 1;
@@ -137,7 +215,8 @@ std::vector<Token> tokenize(std::string_view source, const std::string& fileName
             token.text = source.substr(start, end - start);
             const auto [ptr, ec] = std::from_chars(source.data() + start, source.data() + end, token.number);
             if (ec != std::errc() || ptr != source.data() + end) {
-                diagnostics.error({fileName, line, column}, "malformed number '" + std::string(token.text) + "'");
+                diagnostics.error({fileName, line, column},
+                                  "malformed number '" + std::string(token.text) + "'");
                 token.number = 0.0;
             }
             advance(end - start);

@@ -61,7 +61,8 @@ private:
     }
     const Token& expect(TokenKind kind, const std::string& context) {
         if (peek().kind != kind) {
-            fail(peek(), std::string("expected ") + tokenKindName(kind) + " " + context + ", found " + describe(peek()));
+            fail(peek(), std::string("expected ") + tokenKindName(kind) + " " + context + ", found " +
+                             describe(peek()));
         }
         return next();
     }
@@ -76,7 +77,8 @@ private:
     void statement(GrammarAst& ast) {
         const Token& head = peek();
         if (head.kind != TokenKind::Identifier) {
-            fail(head, "expected a declaration (param, shape, extruded_set or a rule), found " + describe(head));
+            fail(head,
+                 "expected a declaration (param, shape, extruded_set or a rule), found " + describe(head));
         }
         if (head.text == "param" && peek(1).kind == TokenKind::Identifier) return paramDecl(ast);
         if (head.text == "shape" && peek(1).kind == TokenKind::Identifier) return shapeDecl(ast);
@@ -220,20 +222,27 @@ private:
 
     static int precedence(TokenKind kind) {
         switch (kind) {
-        case TokenKind::OrOr: return 1;
-        case TokenKind::AndAnd: return 2;
+        case TokenKind::OrOr:
+            return 1;
+        case TokenKind::AndAnd:
+            return 2;
         case TokenKind::EqualEqual:
-        case TokenKind::NotEqual: return 3;
+        case TokenKind::NotEqual:
+            return 3;
         case TokenKind::Less:
         case TokenKind::LessEqual:
         case TokenKind::Greater:
-        case TokenKind::GreaterEqual: return 4;
+        case TokenKind::GreaterEqual:
+            return 4;
         case TokenKind::Plus:
-        case TokenKind::Minus: return 5;
+        case TokenKind::Minus:
+            return 5;
         case TokenKind::Star:
         case TokenKind::Slash:
-        case TokenKind::Percent: return 6;
-        default: return 0;
+        case TokenKind::Percent:
+            return 6;
+        default:
+            return 0;
         }
     }
 
@@ -256,7 +265,8 @@ private:
 
     ExprPtr unary(int nesting) {
         const Token& token = peek();
-        if (token.kind == TokenKind::Minus || token.kind == TokenKind::Bang || token.kind == TokenKind::Plus) {
+        if (token.kind == TokenKind::Minus || token.kind == TokenKind::Bang ||
+            token.kind == TokenKind::Plus) {
             next();
             checkNesting(nesting + 1, token);
             ExprPtr operand = unary(nesting + 1);

@@ -12,10 +12,10 @@ struct OperationSpec {
     RuleOp op;
 };
 constexpr OperationSpec kOperations[] = {
-    {"Extrude", RuleOp::Extrude}, {"Split", RuleOp::Split},     {"Repeat", RuleOp::Repeat},
+    {"Extrude", RuleOp::Extrude}, {"Split", RuleOp::Split},         {"Repeat", RuleOp::Repeat},
     {"Branch", RuleOp::Branch},   {"Translate", RuleOp::Translate}, {"Rotate", RuleOp::Rotate},
-    {"Cond", RuleOp::Cond},       {"Shape", RuleOp::Shape},     {"Explode", RuleOp::Explode},
-    {"Project", RuleOp::Project}, {"Choose", RuleOp::Choose},   {"NULL", RuleOp::Null},
+    {"Cond", RuleOp::Cond},       {"Shape", RuleOp::Shape},         {"Explode", RuleOp::Explode},
+    {"Project", RuleOp::Project}, {"Choose", RuleOp::Choose},       {"NULL", RuleOp::Null},
 };
 
 class RuleLowering {
@@ -30,26 +30,39 @@ public:
             if (decl_.operation == candidate.name) spec = &candidate;
         }
         if (!spec) {
-            return fail(decl_.operationLocation, "unknown rule operation '" + decl_.operation +
-                                                     "' (expected Extrude, Split, Repeat, Branch, Translate, "
-                                                     "Rotate, Cond, Shape, Explode, Project, Choose or NULL)");
+            return fail(decl_.operationLocation,
+                        "unknown rule operation '" + decl_.operation +
+                            "' (expected Extrude, Split, Repeat, Branch, Translate, "
+                            "Rotate, Cond, Shape, Explode, Project, Choose or NULL)");
         }
         out_.op = spec->op;
         out_.firstArgument = static_cast<uint32_t>(grammar_.arguments.size());
         out_.firstSuccessor = static_cast<uint32_t>(grammar_.successors.size());
         switch (spec->op) {
-        case RuleOp::Extrude: return extrude();
-        case RuleOp::Split: return split();
-        case RuleOp::Repeat: return repeat();
-        case RuleOp::Branch: return branch();
-        case RuleOp::Translate: return numbers(3, 3, "Translate(x, y, z)") && successors(1, 1);
-        case RuleOp::Rotate: return rotate();
-        case RuleOp::Cond: return cond();
-        case RuleOp::Shape: return shape();
-        case RuleOp::Explode: return numbers(0, 0, "Explode()") && successors(5, 5);
-        case RuleOp::Project: return project();
-        case RuleOp::Choose: return choose();
-        case RuleOp::Null: return numbers(0, 0, "NULL") && noSuccessors();
+        case RuleOp::Extrude:
+            return extrude();
+        case RuleOp::Split:
+            return split();
+        case RuleOp::Repeat:
+            return repeat();
+        case RuleOp::Branch:
+            return branch();
+        case RuleOp::Translate:
+            return numbers(3, 3, "Translate(x, y, z)") && successors(1, 1);
+        case RuleOp::Rotate:
+            return rotate();
+        case RuleOp::Cond:
+            return cond();
+        case RuleOp::Shape:
+            return shape();
+        case RuleOp::Explode:
+            return numbers(0, 0, "Explode()") && successors(5, 5);
+        case RuleOp::Project:
+            return project();
+        case RuleOp::Choose:
+            return choose();
+        case RuleOp::Null:
+            return numbers(0, 0, "NULL") && noSuccessors();
         }
         return false;
     }
@@ -64,10 +77,12 @@ private:
     bool arity(size_t minimum, size_t maximum, const char* signature) {
         const size_t n = decl_.arguments.size();
         if (n < minimum || n > maximum) {
-            std::string expected = minimum == maximum ? std::to_string(minimum)
-                                                      : std::to_string(minimum) + " to " + std::to_string(maximum);
-            return fail(decl_.operationLocation, "wrong number of arguments to " + op() + ": expected " + expected +
-                                                     ", found " + std::to_string(n) + " (usage: " + signature + ")");
+            std::string expected = minimum == maximum
+                                       ? std::to_string(minimum)
+                                       : std::to_string(minimum) + " to " + std::to_string(maximum);
+            return fail(decl_.operationLocation, "wrong number of arguments to " + op() + ": expected " +
+                                                     expected + ", found " + std::to_string(n) +
+                                                     " (usage: " + signature + ")");
         }
         return true;
     }
@@ -93,7 +108,8 @@ private:
     bool numbers(size_t minimum, size_t maximum, const char* signature) {
         if (!arity(minimum, maximum, signature)) return false;
         for (size_t i = 0; i < decl_.arguments.size(); ++i) {
-            if (!number(decl_.arguments[i], "argument " + std::to_string(i + 1) + " of " + op())) return false;
+            if (!number(decl_.arguments[i], "argument " + std::to_string(i + 1) + " of " + op()))
+                return false;
         }
         return true;
     }
@@ -141,10 +157,11 @@ private:
     bool successors(size_t minimum, size_t maximum) {
         const size_t n = decl_.successors.size();
         if (!decl_.hasSuccessorBlock || n < minimum || n > maximum) {
-            std::string expected = minimum == maximum ? std::to_string(minimum)
-                                                      : std::to_string(minimum) + " to " + std::to_string(maximum);
-            return fail(decl_.operationLocation, "wrong number of successors for " + op() + ": expected " + expected +
-                                                     " in { }, found " + std::to_string(n));
+            std::string expected = minimum == maximum
+                                       ? std::to_string(minimum)
+                                       : std::to_string(minimum) + " to " + std::to_string(maximum);
+            return fail(decl_.operationLocation, "wrong number of successors for " + op() + ": expected " +
+                                                     expected + " in { }, found " + std::to_string(n));
         }
         for (const SuccessorRef& ref : decl_.successors) {
             uint32_t index = 0;
@@ -162,7 +179,9 @@ private:
         return true;
     }
 
-    bool extrude() { return numbers(1, 3, "Extrude(height[, scale, twist]) {side, top}") && successors(2, 2); }
+    bool extrude() {
+        return numbers(1, 3, "Extrude(height[, scale, twist]) {side, top}") && successors(2, 2);
+    }
 
     bool split() {
         if (decl_.arguments.size() < 2 || decl_.arguments.size() > kMaxSplitParts + 1) {
@@ -230,11 +249,13 @@ private:
         const int shape = grammar_.findShape(name.value->name);
         if (shape < 0) {
             return fail(name.value->location,
-                        "unknown shape '" + name.value->name + "'; declare it with `shape " + name.value->name +
+                        "unknown shape '" + name.value->name + "'; declare it with `shape " +
+                            name.value->name +
                             "(width = ..., height = ..., depth = ..., depth_ratio = ..., triangles = ...);`");
         }
         out_.shape = static_cast<uint16_t>(shape);
-        if (decl_.arguments.size() == 2 && !number(decl_.arguments[1], "the depth ratio of Shape")) return false;
+        if (decl_.arguments.size() == 2 && !number(decl_.arguments[1], "the depth ratio of Shape"))
+            return false;
         return noSuccessors();
     }
 
@@ -256,13 +277,15 @@ private:
             if (argument.label.empty()) {
                 return fail(argument.value->location, "Choose needs 'probability: Successor' pairs");
             }
-            if (argument.relative) return fail(argument.value->location, "'~' sizes are only allowed in Split");
+            if (argument.relative)
+                return fail(argument.value->location, "'~' sizes are only allowed in Split");
             const std::optional<uint32_t> expression = compileExpression(
                 *argument.value, ValueType::Number, "a probability of Choose", grammar_, diagnostics_);
             if (!expression) return false;
             const Expression& weight = grammar_.expressions[*expression];
             if (weight.isConstant && !(weight.constantValue >= 0.0f && std::isfinite(weight.constantValue))) {
-                return fail(argument.value->location, "a probability of Choose must be finite and not negative");
+                return fail(argument.value->location,
+                            "a probability of Choose must be finite and not negative");
             }
             grammar_.arguments.push_back({*expression, false});
             ++out_.argumentCount;

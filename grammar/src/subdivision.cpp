@@ -4,7 +4,8 @@
 
 namespace hexlod::grammar {
 
-SubdivisionStatus splitSizes(float length, const float* sizes, const bool* relative, uint32_t count, float* parts) {
+SubdivisionStatus splitSizes(float length, const float* sizes, const bool* relative, uint32_t count,
+                             float* parts) {
     SubdivisionStatus status = SubdivisionStatus::Ok;
     double absoluteSum = 0.0, relativeSum = 0.0;
     for (uint32_t i = 0; i < count; ++i) {
@@ -26,7 +27,8 @@ SubdivisionStatus splitSizes(float length, const float* sizes, const bool* relat
     return status;
 }
 
-SubdivisionStatus repeatLayout(float length, float size, RepeatMode mode, uint32_t maxTiles, RepeatLayout& layout) {
+SubdivisionStatus repeatLayout(float length, float size, RepeatMode mode, uint32_t maxTiles,
+                               RepeatLayout& layout) {
     layout = RepeatLayout{};
     if (!std::isfinite(size) || !(size > 0.0f)) return SubdivisionStatus::InvalidSize;
     if (!(length > 0.0f)) return SubdivisionStatus::Ok;
@@ -34,7 +36,8 @@ SubdivisionStatus repeatLayout(float length, float size, RepeatMode mode, uint32
     const double ratio = static_cast<double>(length) / static_cast<double>(size);
     // The 1e-5 slack keeps float round-off (a 2.9999998 m facade for 3 m tiles) from
     // losing a tile in fit mode.
-    const double tiles = mode == RepeatMode::Fit ? std::floor(ratio + 1e-5) : std::fmax(1.0, std::nearbyint(ratio));
+    const double tiles =
+        mode == RepeatMode::Fit ? std::floor(ratio + 1e-5) : std::fmax(1.0, std::nearbyint(ratio));
     if (tiles > static_cast<double>(maxTiles)) return SubdivisionStatus::TooManyTiles;
     layout.tiles = static_cast<uint32_t>(tiles);
     if (mode == RepeatMode::Fit) {

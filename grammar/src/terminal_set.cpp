@@ -4,8 +4,9 @@
 
 namespace hexlod::grammar {
 
-TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const glm::vec3& y, const glm::vec3& z,
-                            const glm::vec2& size, float depthRatio, uint16_t shape, uint32_t building) {
+TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const glm::vec3& y,
+                            const glm::vec3& z, const glm::vec2& size, float depthRatio, uint16_t shape,
+                            uint32_t building) {
     glm::quat q = glm::quat_cast(glm::mat3(x, y, z));
     if (q.w < 0.0f) q = -q; // q and -q are the same rotation; one sign keeps the bytes unique
     const glm::uint64 packed = glm::packSnorm4x16(glm::vec4(q.x, q.y, q.z, q.w));
@@ -24,7 +25,8 @@ TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const
 Terminal unpackTerminal(const TerminalRecord& record) {
     Terminal t;
     t.position = glm::vec3(record.position[0], record.position[1], record.position[2]);
-    const glm::uint64 packed = glm::uint64(record.orientation[0]) | (glm::uint64(record.orientation[1]) << 32);
+    const glm::uint64 packed =
+        glm::uint64(record.orientation[0]) | (glm::uint64(record.orientation[1]) << 32);
     const glm::vec4 q = glm::unpackSnorm4x16(packed);
     t.orientation = glm::normalize(glm::quat(q.w, q.x, q.y, q.z));
     t.size = glm::unpackHalf2x16(record.size);

@@ -7,7 +7,9 @@ namespace {
 
 // Cond and Choose pick one successor, so one ending alternative suffices; every other
 // rule hands scopes to all of its successors, so all of them must be able to end.
-bool needsAllSuccessors(RuleOp op) { return op != RuleOp::Cond && op != RuleOp::Choose; }
+bool needsAllSuccessors(RuleOp op) {
+    return op != RuleOp::Cond && op != RuleOp::Choose;
+}
 
 std::vector<bool> terminatingRules(const CompiledGrammar& grammar) {
     const size_t n = grammar.rules.size();
@@ -34,7 +36,8 @@ std::vector<bool> terminatingRules(const CompiledGrammar& grammar) {
 }
 
 // Follows non-terminating successors from `start` until a rule repeats; returns the cycle.
-std::vector<uint32_t> findCycle(const CompiledGrammar& grammar, const std::vector<bool>& terminates, uint32_t start) {
+std::vector<uint32_t> findCycle(const CompiledGrammar& grammar, const std::vector<bool>& terminates,
+                                uint32_t start) {
     std::vector<uint32_t> path{start};
     uint32_t current = start;
     while (true) {
@@ -67,7 +70,8 @@ void checkTermination(const CompiledGrammar& grammar, DiagnosticList& diagnostic
         }
         const uint32_t head = cycle.front();
         diagnostics.error(grammar.ruleLocations[head],
-                          "unbounded recursion: rule '" + grammar.ruleNames[head] + "' can never end (" + chain +
+                          "unbounded recursion: rule '" + grammar.ruleNames[head] + "' can never end (" +
+                              chain +
                               "); recursion must pass through Cond or Choose with an alternative that ends");
     }
 }

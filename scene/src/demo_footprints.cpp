@@ -20,7 +20,9 @@ struct Draws {
 
 using Polygon = std::vector<glm::dvec2>;
 
-Polygon box(double w, double d) { return {{0, 0}, {w, 0}, {w, d}, {0, d}}; }
+Polygon box(double w, double d) {
+    return {{0, 0}, {w, 0}, {w, d}, {0, d}};
+}
 
 Polygon lShape(double w, double d, double wing) {
     return {{0, 0}, {w, 0}, {w, wing}, {wing, wing}, {wing, d}, {0, d}};
@@ -32,7 +34,8 @@ Polygon uShape(double w, double d, double wing) {
 
 Polygon tShape(double w, double d, double stem) {
     const double a = 0.5 * (w - stem), bar = 0.4 * d;
-    return {{a, 0}, {a + stem, 0}, {a + stem, d - bar}, {w, d - bar}, {w, d}, {0, d}, {0, d - bar}, {a, d - bar}};
+    return {{a, 0}, {a + stem, 0}, {a + stem, d - bar}, {w, d - bar},
+            {w, d}, {0, d},        {0, d - bar},        {a, d - bar}};
 }
 
 Polygon regular(double radius, int sides) {
@@ -60,19 +63,28 @@ std::vector<grammar::BuildingInput> makeDemoFootprints(const DemoOptions& option
         Polygon polygon;
         double angle = 0.0;
         switch (demoShapeOf(options.seed, id)) {
-        case DemoShape::Rectangle: polygon = box(w, d); break;
+        case DemoShape::Rectangle:
+            polygon = box(w, d);
+            break;
         case DemoShape::RotatedRectangle:
             polygon = box(w, d);
             angle = draw.uniform(-0.6f, 0.6f);
             break;
-        case DemoShape::LShape: polygon = lShape(w, d, draw.uniform(0.35f, 0.6f) * std::min(w, d)); break;
-        case DemoShape::UShape: polygon = uShape(w, d, draw.uniform(0.25f, 0.33f) * std::min(w, d)); break;
-        case DemoShape::TShape: polygon = tShape(w, d, draw.uniform(0.3f, 0.5f) * w); break;
+        case DemoShape::LShape:
+            polygon = lShape(w, d, draw.uniform(0.35f, 0.6f) * std::min(w, d));
+            break;
+        case DemoShape::UShape:
+            polygon = uShape(w, d, draw.uniform(0.25f, 0.33f) * std::min(w, d));
+            break;
+        case DemoShape::TShape:
+            polygon = tShape(w, d, draw.uniform(0.3f, 0.5f) * w);
+            break;
         case DemoShape::Polygon:
             polygon = regular(0.5 * std::min(w, d), 5 + static_cast<int>(draw.uniform(0.0f, 4.0f)));
             angle = draw.uniform(0.0f, 1.0f);
             break;
-        case DemoShape::count_: break;
+        case DemoShape::count_:
+            break;
         }
         // Centre on the lot, then rotate; footprints stay inside their lot.
         glm::dvec2 lo = polygon[0], hi = polygon[0];
@@ -90,8 +102,8 @@ std::vector<grammar::BuildingInput> makeDemoFootprints(const DemoOptions& option
     return buildings;
 }
 
-std::vector<grammar::ParameterOverride> demoParameterOverrides(const grammar::CompiledGrammar& grammar, uint64_t seed,
-                                                               uint32_t building) {
+std::vector<grammar::ParameterOverride> demoParameterOverrides(const grammar::CompiledGrammar& grammar,
+                                                               uint64_t seed, uint32_t building) {
     const int floors = grammar.findParameter("floors");
     if (floors < 0) return {};
     const grammar::ParameterInfo& info = grammar.params[floors];

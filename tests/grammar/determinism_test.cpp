@@ -41,7 +41,8 @@ std::vector<BuildingInput> demoBuildings(const CompiledGrammar& g, uint32_t coun
     return buildings;
 }
 
-BatchResult expandWithThreads(const CompiledGrammar& g, const std::vector<BuildingInput>& buildings, int threads) {
+BatchResult expandWithThreads(const CompiledGrammar& g, const std::vector<BuildingInput>& buildings,
+                              int threads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     BatchInput input;
     input.grammar = &g;
@@ -104,9 +105,12 @@ TEST(Determinism, OneBuildingsParametersChangeOnlyItsTerminals) {
         }
         return out;
     };
-    const auto othersBefore = ofBuilding(before.terminals, 23, false), othersAfter = ofBuilding(after.terminals, 23, false);
+    const auto othersBefore = ofBuilding(before.terminals, 23, false),
+               othersAfter = ofBuilding(after.terminals, 23, false);
     ASSERT_EQ(othersBefore.size(), othersAfter.size());
-    EXPECT_EQ(std::memcmp(othersBefore.data(), othersAfter.data(), othersBefore.size() * sizeof(TerminalRecord)), 0);
+    EXPECT_EQ(
+        std::memcmp(othersBefore.data(), othersAfter.data(), othersBefore.size() * sizeof(TerminalRecord)),
+        0);
     EXPECT_GT(ofBuilding(after.terminals, 23, true).size(), ofBuilding(before.terminals, 23, true).size());
 }
 

@@ -11,7 +11,8 @@ namespace {
 // Compiles `A -> Extrude(expr) { NULL, NULL };` and returns the folded constant.
 float fold(const std::string& expression) {
     DiagnosticList d;
-    const CompiledGrammar g = compileGrammar("A -> Extrude(" + expression + ") { NULL, NULL };", "e.grammar", d);
+    const CompiledGrammar g =
+        compileGrammar("A -> Extrude(" + expression + ") { NULL, NULL };", "e.grammar", d);
     EXPECT_FALSE(d.hasErrors()) << d.formatAll();
     if (g.expressions.empty()) return NAN;
     EXPECT_TRUE(g.expressions[0].isConstant);
@@ -46,8 +47,8 @@ TEST(Expressions, Functions) {
 
 TEST(Expressions, ParametersAndAccessorsAreNotFolded) {
     DiagnosticList d;
-    const CompiledGrammar g =
-        compileGrammar("param p = 2 in [0, 5];\nA -> Extrude(p * width + rand(0, 1)) { NULL, NULL };", "e.grammar", d);
+    const CompiledGrammar g = compileGrammar(
+        "param p = 2 in [0, 5];\nA -> Extrude(p * width + rand(0, 1)) { NULL, NULL };", "e.grammar", d);
     ASSERT_FALSE(d.hasErrors()) << d.formatAll();
     ASSERT_EQ(g.expressions.size(), 1u);
     EXPECT_FALSE(g.expressions[0].isConstant);
@@ -76,7 +77,9 @@ TEST(Expressions, TooDeepForTheEvaluationStack) {
 
 TEST(Expressions, ContentHashFollowsTheCompiledForm) {
     DiagnosticList d;
-    const auto hash = [&](const std::string& source) { return compileGrammar(source, "e.grammar", d).contentHash; };
+    const auto hash = [&](const std::string& source) {
+        return compileGrammar(source, "e.grammar", d).contentHash;
+    };
     const uint64_t base = hash("A -> Extrude(3) { NULL, NULL };");
     EXPECT_EQ(base, hash("A   ->   Extrude( 3 ) { NULL , NULL } ; # same grammar"));
     EXPECT_NE(base, hash("A -> Extrude(4) { NULL, NULL };"));

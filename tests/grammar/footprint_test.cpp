@@ -20,7 +20,8 @@ TEST(Footprint, ClockwiseIsReversedToCounterClockwise) {
 TEST(Footprint, DuplicateClosingAndCollinearPointsAreRemoved) {
     CleanFootprint clean;
     std::string error;
-    ASSERT_TRUE(cleanFootprint({{0, 0}, {5, 0}, {5, 0}, {10, 0}, {10, 5}, {0, 5}, {0, 0}}, clean, error)) << error;
+    ASSERT_TRUE(cleanFootprint({{0, 0}, {5, 0}, {5, 0}, {10, 0}, {10, 5}, {0, 5}, {0, 0}}, clean, error))
+        << error;
     EXPECT_EQ(clean.points.size(), 4u);
     EXPECT_EQ(clean.removedPoints, 3u);
     EXPECT_FALSE(clean.reversed);
@@ -59,7 +60,8 @@ TEST(Footprint, FarFromTheOriginAndTiny) {
     CleanFootprint clean;
     std::string error;
     const double far = 1e7;
-    ASSERT_TRUE(cleanFootprint({{far, far}, {far + 20, far}, {far + 20, far + 12}, {far, far + 12}}, clean, error));
+    ASSERT_TRUE(
+        cleanFootprint({{far, far}, {far + 20, far}, {far + 20, far + 12}, {far, far + 12}}, clean, error));
     EXPECT_NEAR(clean.area, 240.0, 1e-6);
     // A 5 mm x 5 mm footprint (25 mm^2) is still a footprint.
     ASSERT_TRUE(cleanFootprint({{0, 0}, {0.005, 0}, {0.005, 0.005}, {0, 0.005}}, clean, error)) << error;

@@ -13,9 +13,10 @@ TEST(Lexer, TokensCarryLineAndColumn) {
     DiagnosticList d;
     const auto tokens = lex("A -> Split(x, ~1.5e1)\n  { B };", d);
     ASSERT_FALSE(d.hasErrors());
-    const TokenKind expected[] = {TokenKind::Identifier, TokenKind::Arrow,  TokenKind::Identifier, TokenKind::LParen,
-                                  TokenKind::Identifier, TokenKind::Comma,  TokenKind::Tilde,      TokenKind::Number,
-                                  TokenKind::RParen,     TokenKind::LBrace, TokenKind::Identifier, TokenKind::RBrace,
+    const TokenKind expected[] = {TokenKind::Identifier, TokenKind::Arrow,      TokenKind::Identifier,
+                                  TokenKind::LParen,     TokenKind::Identifier, TokenKind::Comma,
+                                  TokenKind::Tilde,      TokenKind::Number,     TokenKind::RParen,
+                                  TokenKind::LBrace,     TokenKind::Identifier, TokenKind::RBrace,
                                   TokenKind::Semicolon,  TokenKind::End};
     ASSERT_EQ(tokens.size(), std::size(expected));
     for (size_t i = 0; i < tokens.size(); ++i) EXPECT_EQ(tokens[i].kind, expected[i]) << i;
@@ -32,10 +33,10 @@ TEST(Lexer, CommentsAndTwoCharacterOperators) {
     std::vector<TokenKind> kinds;
     for (const Token& t : tokens) kinds.push_back(t.kind);
     const std::vector<TokenKind> expected = {
-        TokenKind::Identifier, TokenKind::LessEqual,    TokenKind::Identifier, TokenKind::AndAnd,
-        TokenKind::Bang,       TokenKind::Identifier,   TokenKind::NotEqual,   TokenKind::Identifier,
-        TokenKind::OrOr,       TokenKind::Identifier,   TokenKind::GreaterEqual, TokenKind::Identifier,
-        TokenKind::EqualEqual, TokenKind::Identifier,   TokenKind::End};
+        TokenKind::Identifier, TokenKind::LessEqual,  TokenKind::Identifier,   TokenKind::AndAnd,
+        TokenKind::Bang,       TokenKind::Identifier, TokenKind::NotEqual,     TokenKind::Identifier,
+        TokenKind::OrOr,       TokenKind::Identifier, TokenKind::GreaterEqual, TokenKind::Identifier,
+        TokenKind::EqualEqual, TokenKind::Identifier, TokenKind::End};
     EXPECT_EQ(kinds, expected);
     EXPECT_EQ(tokens[0].line, 2u);
 }

@@ -36,7 +36,8 @@ TEST(Parser, DeclarationsAndRules) {
 
 TEST(Parser, ExpressionPrecedence) {
     DiagnosticList d;
-    const GrammarAst ast = parseGrammar("A -> Extrude(1 + 2 * 3 < 4 || !b && c ? x : y) { B, C };", "p.grammar", d);
+    const GrammarAst ast =
+        parseGrammar("A -> Extrude(1 + 2 * 3 < 4 || !b && c ? x : y) { B, C };", "p.grammar", d);
     ASSERT_FALSE(d.hasErrors()) << d.formatAll();
     const ExprNode& root = *ast.rules[0].arguments[0].value;
     ASSERT_EQ(root.kind, ExprNode::Kind::Ternary);
@@ -51,17 +52,21 @@ TEST(Parser, ExpressionPrecedence) {
 
 TEST(Parser, RecoversAtSemicolonsAndReportsEveryError) {
     DiagnosticList d;
-    const GrammarAst ast = parseGrammar("A -> Split(x 1) { B };\nB -> Shape(w);\nC Shape(w);\nD -> NULL;\n", "p.grammar", d);
+    const GrammarAst ast =
+        parseGrammar("A -> Split(x 1) { B };\nB -> Shape(w);\nC Shape(w);\nD -> NULL;\n", "p.grammar", d);
     ASSERT_EQ(d.all().size(), 2u) << d.formatAll();
-    EXPECT_EQ(formatDiagnostic(d.all()[0]), "p.grammar:1:14: error: expected ')' to close the argument list of Split, "
-                                            "found '1'");
-    EXPECT_EQ(formatDiagnostic(d.all()[1]), "p.grammar:3:3: error: expected '->' after the rule name 'C', found 'Shape'");
+    EXPECT_EQ(formatDiagnostic(d.all()[0]),
+              "p.grammar:1:14: error: expected ')' to close the argument list of Split, "
+              "found '1'");
+    EXPECT_EQ(formatDiagnostic(d.all()[1]),
+              "p.grammar:3:3: error: expected '->' after the rule name 'C', found 'Shape'");
     EXPECT_EQ(ast.rules.size(), 2u); // B and D survive
 }
 
 TEST(Parser, DeepNestingIsAnErrorNotAStackOverflow) {
     DiagnosticList d;
-    std::string deep = "A -> Extrude(" + std::string(5000, '(') + "1" + std::string(5000, ')') + ") { B, C };";
+    std::string deep =
+        "A -> Extrude(" + std::string(5000, '(') + "1" + std::string(5000, ')') + ") { B, C };";
     parseGrammar(deep, "p.grammar", d);
     ASSERT_TRUE(d.hasErrors());
     EXPECT_NE(d.all()[0].message.find("nested too deeply"), std::string::npos);

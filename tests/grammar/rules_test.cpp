@@ -18,9 +18,12 @@ using test::rectangle;
 
 constexpr float kTol = 1e-4f;
 // Terminal sizes are stored as halves: 2^-11 relative precision (docs/grammar.md, Output).
-float sizeTolerance(float size) { return std::max(kTol, size * 4.9e-4f); }
+float sizeTolerance(float size) {
+    return std::max(kTol, size * 4.9e-4f);
+}
 
-const char* kShapes = "shape a(triangles = 2); shape b(triangles = 2); shape c(triangles = 2, depth_ratio = 0.5);\n";
+const char* kShapes =
+    "shape a(triangles = 2); shape b(triangles = 2); shape c(triangles = 2, depth_ratio = 0.5);\n";
 
 std::vector<Terminal> run(const std::string& rules, const std::vector<ParameterOverride>& overrides = {},
                           uint32_t building = 0) {
@@ -65,8 +68,9 @@ TEST(Rules, ExtrudeScaleAndTwistActAboutTheAtomMiddle) {
 
 TEST(Rules, ExtrudeFaceGivesABoxAndTheMovedFace) {
     // The 20 x 10 facade grows 2 m outwards (south): the top face sits at y = -2.
-    const auto t = run("Go -> Extrude(10) { Face, NULL }; Face -> Extrude(2) { Box, Cap };"
-                       "Box -> Explode() { NULL, Front, NULL, NULL, NULL }; Front -> Shape(a); Cap -> Shape(b);");
+    const auto t =
+        run("Go -> Extrude(10) { Face, NULL }; Face -> Extrude(2) { Box, Cap };"
+            "Box -> Explode() { NULL, Front, NULL, NULL, NULL }; Front -> Shape(a); Cap -> Shape(b);");
     ASSERT_EQ(t.size(), 2u);
     for (const Terminal& terminal : t) {
         // The box's front face and the extrusion's cap coincide.
@@ -79,7 +83,8 @@ TEST(Rules, ExtrudeFaceGivesABoxAndTheMovedFace) {
 
 TEST(Rules, SplitSharesTheRemainderAmongRelativeParts) {
     // On 20 m: absolute 2 and 3 leave 15 for ~1 and ~2: parts 2, 5, 3, 10 at 0, 2, 7, 10.
-    const auto t = run("Go -> Extrude(4) { F, NULL }; F -> Split(x, 2, ~1, 3, ~2) { A, A, A, A }; A -> Shape(a);");
+    const auto t =
+        run("Go -> Extrude(4) { F, NULL }; F -> Split(x, 2, ~1, 3, ~2) { A, A, A, A }; A -> Shape(a);");
     ASSERT_EQ(t.size(), 4u);
     const float expectedX[] = {0, 2, 7, 10}, expectedW[] = {2, 5, 3, 10};
     for (int i = 0; i < 4; ++i) {
@@ -91,8 +96,9 @@ TEST(Rules, SplitSharesTheRemainderAmongRelativeParts) {
 
 TEST(Rules, SplitScalesOverflowingAbsolutePartsAndDropsEmptyOnes) {
     // 15 + 10 overflow 20 m: scaled by 0.8 to 12 and 8; the ~1 part gets 0 and is dropped.
-    const auto t = run("Go -> Extrude(4) { F, NULL }; F -> Split(x, 15, 10, ~1) { A, A, B }; A -> Shape(a); B -> "
-                       "Shape(b);");
+    const auto t =
+        run("Go -> Extrude(4) { F, NULL }; F -> Split(x, 15, 10, ~1) { A, A, B }; A -> Shape(a); B -> "
+            "Shape(b);");
     ASSERT_EQ(t.size(), 2u);
     EXPECT_NEAR(t[0].size.x, 12, kTol);
     EXPECT_NEAR(t[1].size.x, 8, kTol);
@@ -111,7 +117,8 @@ TEST(Rules, SplitAlongYSetsTheFloorIndex) {
 
 TEST(Rules, RepeatFitPlacesExactTilesWithCentredMargins) {
     // 20 m / 3 m: 6 tiles of exactly 3 m, 1 m margins at both ends going to M.
-    const auto t = run("Go -> Extrude(4) { F, NULL }; F -> Repeat(x, 3, fit) { T, M }; T -> Shape(a); M -> Shape(b);");
+    const auto t =
+        run("Go -> Extrude(4) { F, NULL }; F -> Repeat(x, 3, fit) { T, M }; T -> Shape(a); M -> Shape(b);");
     ASSERT_EQ(t.size(), 8u);
     std::vector<float> tiles, margins;
     for (const Terminal& terminal : t) {
@@ -137,21 +144,24 @@ TEST(Rules, RepeatEqualFillsTheScope) {
 
 TEST(Rules, RepeatIndexAndCountAreReadable) {
     // Only the last of the 7 tiles passes the condition.
-    const auto t = run("Go -> Extrude(4) { F, NULL }; F -> Repeat(x, 3, equal) { T }; T -> Cond(index == count - 1) "
-                       "{ A, NULL }; A -> Shape(a);");
+    const auto t =
+        run("Go -> Extrude(4) { F, NULL }; F -> Repeat(x, 3, equal) { T }; T -> Cond(index == count - 1) "
+            "{ A, NULL }; A -> Shape(a);");
     ASSERT_EQ(t.size(), 1u);
     EXPECT_NEAR(t[0].position.x, 120.0f / 7.0f, 1e-3f);
 }
 
 TEST(Rules, BranchCopiesTheScopeWithIndexAndLevel) {
-    const auto t = run("Go -> Extrude(4) { F, NULL }; F -> Branch(3) { C }; C -> Cond(level == 1) { P, NULL };"
-                       "P -> Translate(index * 5, 0, 0) { A }; A -> Shape(a);");
+    const auto t =
+        run("Go -> Extrude(4) { F, NULL }; F -> Branch(3) { C }; C -> Cond(level == 1) { P, NULL };"
+            "P -> Translate(index * 5, 0, 0) { A }; A -> Shape(a);");
     ASSERT_EQ(t.size(), 3u);
     for (int i = 0; i < 3; ++i) expectVec(t[i].position, {5.0f * i, 0, 0});
 }
 
 TEST(Rules, BranchWithOneSuccessorPerCopy) {
-    const auto t = run("Go -> Extrude(4) { F, NULL }; F -> Branch(2) { A, B }; A -> Shape(a); B -> Shape(b);");
+    const auto t =
+        run("Go -> Extrude(4) { F, NULL }; F -> Branch(2) { A, B }; A -> Shape(a); B -> Shape(b);");
     ASSERT_EQ(t.size(), 2u);
     EXPECT_EQ(t[0].shape, 0);
     EXPECT_EQ(t[1].shape, 1);

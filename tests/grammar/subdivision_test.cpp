@@ -92,7 +92,8 @@ TEST(RepeatLayout, FloatRoundOffDoesNotLoseATile) {
 TEST(RepeatLayout, InvalidTileSizes) {
     RepeatLayout layout;
     for (float size : {0.0f, -1.0f, kNaN, kInf, -kInf}) {
-        EXPECT_EQ(repeatLayout(10, size, RepeatMode::Equal, 1000, layout), SubdivisionStatus::InvalidSize) << size;
+        EXPECT_EQ(repeatLayout(10, size, RepeatMode::Equal, 1000, layout), SubdivisionStatus::InvalidSize)
+            << size;
         EXPECT_EQ(layout.tiles, 0u);
     }
 }

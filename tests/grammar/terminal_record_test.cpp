@@ -22,7 +22,8 @@ TEST(TerminalRecord, RoundTripsAnArbitraryFrame) {
     const glm::vec3 y = glm::normalize(glm::cross(glm::vec3(0, 0, 1), x) * -1.0f + glm::vec3(0, 0, 0.1f));
     const glm::vec3 yo = glm::normalize(y - x * glm::dot(x, y));
     const glm::vec3 z = glm::cross(x, yo);
-    const TerminalRecord r = packTerminal({12.5f, -3.25f, 100.0f}, x, yo, z, {1.4f, 2.6f}, 0.15f, 513, 123456);
+    const TerminalRecord r =
+        packTerminal({12.5f, -3.25f, 100.0f}, x, yo, z, {1.4f, 2.6f}, 0.15f, 513, 123456);
     const Terminal t = unpackTerminal(r);
     EXPECT_EQ(t.position, glm::vec3(12.5f, -3.25f, 100.0f));
     EXPECT_EQ(t.shape, 513);

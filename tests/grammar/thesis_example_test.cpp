@@ -17,7 +17,8 @@ constexpr float kTolerance = 1e-4f;
 
 CompiledGrammar thesisGrammar() {
     DiagnosticList diagnostics;
-    CompiledGrammar g = compileGrammarFile(HEXLOD_CONFIGS_DIR "/grammars/thesis-example.grammar", diagnostics);
+    CompiledGrammar g =
+        compileGrammarFile(HEXLOD_CONFIGS_DIR "/grammars/thesis-example.grammar", diagnostics);
     EXPECT_FALSE(diagnostics.hasErrors()) << diagnostics.formatAll();
     EXPECT_TRUE(diagnostics.all().empty()) << diagnostics.formatAll();
     return g;

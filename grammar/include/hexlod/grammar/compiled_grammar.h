@@ -11,7 +11,20 @@
 
 namespace hexlod::grammar {
 
-enum class RuleOp : uint8_t { Extrude, Split, Repeat, Branch, Translate, Rotate, Cond, Shape, Explode, Project, Choose, Null };
+enum class RuleOp : uint8_t {
+    Extrude,
+    Split,
+    Repeat,
+    Branch,
+    Translate,
+    Rotate,
+    Cond,
+    Shape,
+    Explode,
+    Project,
+    Choose,
+    Null
+};
 const char* ruleOpName(RuleOp op);
 
 enum class Axis : uint8_t { X, Y, Z };
@@ -28,15 +41,15 @@ struct RuleArgumentRef {
 
 struct CompiledRule {
     RuleOp op = RuleOp::Null;
-    Axis axis = Axis::X;          // Split, Repeat, Rotate; Project's first axis
-    Axis secondAxis = Axis::Y;    // Project
+    Axis axis = Axis::X;       // Split, Repeat, Rotate; Project's first axis
+    Axis secondAxis = Axis::Y; // Project
     RepeatMode mode = RepeatMode::Fit;
     Pivot pivot = Pivot::Origin;
-    bool extrudedStop = false;    // scopes entering this rule form the extruded set
-    uint16_t shape = 0;           // Shape
-    uint32_t firstArgument = 0;   // into CompiledGrammar::arguments
+    bool extrudedStop = false;  // scopes entering this rule form the extruded set
+    uint16_t shape = 0;         // Shape
+    uint32_t firstArgument = 0; // into CompiledGrammar::arguments
     uint32_t argumentCount = 0;
-    uint32_t firstSuccessor = 0;  // into CompiledGrammar::successors
+    uint32_t firstSuccessor = 0; // into CompiledGrammar::successors
     uint32_t successorCount = 0;
 };
 
@@ -78,7 +91,8 @@ struct CompiledGrammar {
 
 // Parses and compiles a grammar. On any error the returned grammar is empty and
 // `diagnostics` says why, with file:line:col.
-CompiledGrammar compileGrammar(std::string_view source, const std::string& fileName, DiagnosticList& diagnostics);
+CompiledGrammar compileGrammar(std::string_view source, const std::string& fileName,
+                               DiagnosticList& diagnostics);
 
 // Reads and compiles a grammar file; a missing or unreadable file is a diagnostic too.
 CompiledGrammar compileGrammarFile(const std::string& path, DiagnosticList& diagnostics);
@@ -90,7 +104,8 @@ struct ParameterOverride {
     std::string name;
     double value = 0.0;
 };
-std::vector<float> resolveParameters(const CompiledGrammar& grammar, const std::vector<ParameterOverride>& overrides,
+std::vector<float> resolveParameters(const CompiledGrammar& grammar,
+                                     const std::vector<ParameterOverride>& overrides,
                                      DiagnosticList& diagnostics);
 
 } // namespace hexlod::grammar

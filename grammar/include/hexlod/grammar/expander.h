@@ -22,8 +22,8 @@ struct ExpansionLimits {
 };
 
 struct ExpansionSettings {
-    uint64_t seed = 0;            // scene seed
-    glm::dvec3 cellOrigin{0.0};   // terminal positions are relative to it
+    uint64_t seed = 0;          // scene seed
+    glm::dvec3 cellOrigin{0.0}; // terminal positions are relative to it
     ExpansionLimits limits;
 };
 
@@ -87,6 +87,7 @@ private:
 };
 
 // Formats an issue for people: "file:line:col: rule 'Name': building 12: <what happened>".
-std::string describeIssue(const CompiledGrammar& grammar, const ExpansionIssue& issue, uint64_t occurrences = 1);
+std::string describeIssue(const CompiledGrammar& grammar, const ExpansionIssue& issue,
+                          uint64_t occurrences = 1);
 
 } // namespace hexlod::grammar

@@ -22,12 +22,12 @@ struct ExtrudedElement {
 
 struct ExtrudedBuilding {
     uint32_t building = 0;
-    uint32_t firstVertex = 0, vertexCount = 0;     // cleaned CCW footprint in ExtrudedSet::footprints
-    uint32_t firstElement = 0, elementCount = 0;   // in ExtrudedSet::elements
-    uint32_t firstParameter = 0;                   // grammar.params.size() values in ExtrudedSet::parameters
-    float baseElevation = 0.0f;                    // cell-local
-    float height = 0.0f;                           // top of the base volume above baseElevation
-    uint16_t wallMaterial = 0;                     // LOD0 wall texture
+    uint32_t firstVertex = 0, vertexCount = 0;   // cleaned CCW footprint in ExtrudedSet::footprints
+    uint32_t firstElement = 0, elementCount = 0; // in ExtrudedSet::elements
+    uint32_t firstParameter = 0;                 // grammar.params.size() values in ExtrudedSet::parameters
+    float baseElevation = 0.0f;                  // cell-local
+    float height = 0.0f;                         // top of the base volume above baseElevation
+    uint16_t wallMaterial = 0;                   // LOD0 wall texture
 };
 
 struct ExtrudedSet {

@@ -55,6 +55,7 @@ struct Token {
 // Splits `source` into tokens. Comments run from `#` or `//` to the end of the line.
 // Unknown characters and malformed numbers are reported and skipped, so the parser
 // still sees the rest of the file and can report further errors.
-std::vector<Token> tokenize(std::string_view source, const std::string& fileName, DiagnosticList& diagnostics);
+std::vector<Token> tokenize(std::string_view source, const std::string& fileName,
+                            DiagnosticList& diagnostics);
 
 } // namespace hexlod::grammar

@@ -15,9 +15,13 @@ constexpr uint64_t mixBits(uint64_t x) {
     return x ^ (x >> 31);
 }
 
-constexpr uint64_t combineKey(uint64_t key, uint64_t value) { return mixBits(key ^ mixBits(value)); }
+constexpr uint64_t combineKey(uint64_t key, uint64_t value) {
+    return mixBits(key ^ mixBits(value));
+}
 
 // A uniform float in [0, 1) from the top 24 bits of a key.
-constexpr float unitFloat(uint64_t key) { return static_cast<float>(key >> 40) * (1.0f / 16777216.0f); }
+constexpr float unitFloat(uint64_t key) {
+    return static_cast<float>(key >> 40) * (1.0f / 16777216.0f);
+}
 
 } // namespace hexlod::grammar

@@ -15,7 +15,8 @@ enum class SubdivisionStatus : uint8_t { Ok, InvalidSize, TooManyTiles };
 // down to fit and relative parts get 0. Relative weights that sum to 0 get 0. A NaN,
 // infinite or negative size counts as 0 and reports InvalidSize. `parts` receives `count`
 // sizes that sum to at most `length`.
-SubdivisionStatus splitSizes(float length, const float* sizes, const bool* relative, uint32_t count, float* parts);
+SubdivisionStatus splitSizes(float length, const float* sizes, const bool* relative, uint32_t count,
+                             float* parts);
 
 struct RepeatLayout {
     uint32_t tiles = 0;
@@ -27,6 +28,7 @@ struct RepeatLayout {
 // margins at both ends; `equal` places max(1, round(length / size)) tiles that fill the
 // scope. A size that is not a positive finite number reports InvalidSize; more than
 // `maxTiles` tiles report TooManyTiles. In both cases no tile is laid out.
-SubdivisionStatus repeatLayout(float length, float size, RepeatMode mode, uint32_t maxTiles, RepeatLayout& layout);
+SubdivisionStatus repeatLayout(float length, float size, RepeatMode mode, uint32_t maxTiles,
+                               RepeatLayout& layout);
 
 } // namespace hexlod::grammar

@@ -37,8 +37,9 @@ struct Terminal {
 };
 
 // `x`, `y`, `z` must be an orthonormal right-handed basis.
-TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const glm::vec3& y, const glm::vec3& z,
-                            const glm::vec2& size, float depthRatio, uint16_t shape, uint32_t building);
+TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const glm::vec3& y,
+                            const glm::vec3& z, const glm::vec2& size, float depthRatio, uint16_t shape,
+                            uint32_t building);
 Terminal unpackTerminal(const TerminalRecord& record);
 
 struct CellCoord {

@@ -26,7 +26,7 @@ DemoShape demoShapeOf(uint64_t seed, uint32_t building);
 
 // Varies the height of each building: if the grammar declares `floors`, it is drawn from
 // [default / 2, default * 1.5] clipped to the declared range, keyed by seed and building.
-std::vector<grammar::ParameterOverride> demoParameterOverrides(const grammar::CompiledGrammar& grammar, uint64_t seed,
-                                                               uint32_t building);
+std::vector<grammar::ParameterOverride> demoParameterOverrides(const grammar::CompiledGrammar& grammar,
+                                                               uint64_t seed, uint32_t building);
 
 } // namespace hexlod::scene
