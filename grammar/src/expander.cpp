@@ -95,20 +95,20 @@ struct BuildingExpander::Impl {
         return grammar.successors[rule.firstSuccessor + i];
     }
 
-    void push(const Scope& child, uint32_t rule, bool belowStop, uint32_t parentRule) {
-        if (rule == kNullRule) return;
-        if (child.depth > settings.limits.maxDepth) {
-            issue(IssueKind::DepthCap, parentRule, "depth " + std::to_string(child.depth));
-            return;
+    // Pushes a copy of `parent` for `rule` and returns it for the caller to adjust, or null
+    // when the successor is NULL or the depth cap is reached. Building the child in place
+    // on the stack saves a scope copy per rule application, the hot path here. The pointer
+    // is valid until the next spawn.
+    Scope* spawn(const Scope& parent, uint64_t slot, uint32_t rule, bool belowStop, uint32_t parentRule) {
+        if (rule == kNullRule) return nullptr;
+        if (parent.depth >= settings.limits.maxDepth) {
+            issue(IssueKind::DepthCap, parentRule, "depth " + std::to_string(parent.depth + 1));
+            return nullptr;
         }
-        stack.push_back({child, rule, belowStop});
-    }
-
-    Scope childOf(const Scope& parent, uint64_t slot) const {
-        Scope child = parent;
-        child.key = combineKey(parent.key, slot);
-        child.depth = static_cast<uint16_t>(parent.depth + 1);
-        return child;
+        WorkItem& item = stack.emplace_back(WorkItem{parent, rule, belowStop});
+        item.scope.key = combineKey(parent.key, slot);
+        item.scope.depth = static_cast<uint16_t>(parent.depth + 1);
+        return &item.scope;
     }
 
     void recordElement(const Scope& s, uint32_t rule) {
@@ -148,24 +148,23 @@ struct BuildingExpander::Impl {
         if (s.dimension == 3) return issue(IssueKind::WrongScopeKind, r, "Extrude needs an atom or a face");
         // An atom grows along its up axis into a face; a face grows along its normal into a box.
         const glm::vec3 growth = s.dimension == 1 ? s.y : s.z;
-        Scope side = childOf(s, 0);
-        side.dimension = static_cast<uint8_t>(s.dimension + 1);
-        (s.dimension == 1 ? side.size.y : side.size.z) = height;
-
-        Scope top = childOf(s, 1);
-        const glm::vec3 center = s.center() + growth * height;
-        if (twist != 0.0f) {
-            const glm::quat spin = glm::angleAxis(twist * kDegrees, growth);
-            top.x = glm::normalize(spin * s.x);
-            top.y = glm::normalize(spin * s.y);
-            top.z = glm::normalize(spin * s.z);
+        if (Scope* top = spawn(s, 1, successor(rule, 1), below, r)) {
+            if (twist != 0.0f) {
+                const glm::quat spin = glm::angleAxis(twist * kDegrees, growth);
+                top->x = glm::normalize(spin * s.x);
+                top->y = glm::normalize(spin * s.y);
+                top->z = glm::normalize(spin * s.z);
+            }
+            top->size.x = s.size.x * scale;
+            if (s.dimension == 2) top->size.y = s.size.y * scale;
+            const glm::vec3 center = s.center() + growth * height;
+            top->origin = center - top->x * (0.5f * top->size.x) - top->y * (0.5f * top->size.y) -
+                          top->z * (0.5f * top->size.z);
         }
-        top.size.x = s.size.x * scale;
-        if (s.dimension == 2) top.size.y = s.size.y * scale;
-        top.origin =
-            center - top.x * (0.5f * top.size.x) - top.y * (0.5f * top.size.y) - top.z * (0.5f * top.size.z);
-        push(top, successor(rule, 1), below, r);
-        push(side, successor(rule, 0), below, r);
+        if (Scope* side = spawn(s, 0, successor(rule, 0), below, r)) {
+            side->dimension = static_cast<uint8_t>(s.dimension + 1);
+            (s.dimension == 1 ? side->size.y : side->size.z) = height;
+        }
     }
 
     void split(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
@@ -187,13 +186,13 @@ struct BuildingExpander::Impl {
         for (uint32_t i = n; i-- > 0;) {
             offset -= parts[i];
             if (!(parts[i] > 0.0f)) continue;
-            Scope child = childOf(s, i);
-            child.origin = s.origin + direction * offset;
-            child.size[axis] = parts[i];
-            child.index = static_cast<int32_t>(i);
-            child.count = static_cast<int32_t>(n);
-            if (axis == 1) child.floor = child.index, child.floors = child.count;
-            push(child, successor(rule, i), below, r);
+            if (Scope* child = spawn(s, i, successor(rule, i), below, r)) {
+                child->origin = s.origin + direction * offset;
+                child->size[axis] = parts[i];
+                child->index = static_cast<int32_t>(i);
+                child->count = static_cast<int32_t>(n);
+                if (axis == 1) child->floor = child->index, child->floors = child->count;
+            }
         }
     }
 
@@ -211,22 +210,23 @@ struct BuildingExpander::Impl {
         if (rule.successorCount == 2 && layout.margin > 0.0f) {
             const float after = layout.margin + layout.tiles * layout.tileSize;
             for (uint32_t j = 2; j-- > 0;) {
-                Scope margin = childOf(s, kMarginKeySpace + j);
-                margin.origin = s.origin + direction * (j == 0 ? 0.0f : after);
-                margin.size[axis] = j == 0 ? layout.margin : std::max(0.0f, s.size[axis] - after);
-                margin.index = static_cast<int32_t>(j);
-                margin.count = 2;
-                push(margin, successor(rule, 1), below, r);
+                if (Scope* margin = spawn(s, kMarginKeySpace + j, successor(rule, 1), below, r)) {
+                    margin->origin = s.origin + direction * (j == 0 ? 0.0f : after);
+                    margin->size[axis] = j == 0 ? layout.margin : std::max(0.0f, s.size[axis] - after);
+                    margin->index = static_cast<int32_t>(j);
+                    margin->count = 2;
+                }
             }
         }
         for (uint32_t i = layout.tiles; i-- > 0;) {
-            Scope tile = childOf(s, i);
-            tile.origin = s.origin + direction * (layout.margin + static_cast<float>(i) * layout.tileSize);
-            tile.size[axis] = layout.tileSize;
-            tile.index = static_cast<int32_t>(i);
-            tile.count = static_cast<int32_t>(layout.tiles);
-            if (axis == 1) tile.floor = tile.index, tile.floors = tile.count;
-            push(tile, successor(rule, 0), below, r);
+            if (Scope* tile = spawn(s, i, successor(rule, 0), below, r)) {
+                tile->origin =
+                    s.origin + direction * (layout.margin + static_cast<float>(i) * layout.tileSize);
+                tile->size[axis] = layout.tileSize;
+                tile->index = static_cast<int32_t>(i);
+                tile->count = static_cast<int32_t>(layout.tiles);
+                if (axis == 1) tile->floor = tile->index, tile->floors = tile->count;
+            }
         }
     }
 
@@ -237,21 +237,21 @@ struct BuildingExpander::Impl {
         }
         const uint32_t n = static_cast<uint32_t>(std::nearbyint(count));
         for (uint32_t i = n; i-- > 0;) {
-            Scope copy = childOf(s, i);
-            copy.level = static_cast<uint16_t>(s.level + 1);
-            copy.index = static_cast<int32_t>(i);
-            copy.count = static_cast<int32_t>(n);
-            push(copy, successor(rule, rule.successorCount == 1 ? 0 : std::min(i, rule.successorCount - 1)),
-                 below, r);
+            const uint32_t next =
+                successor(rule, rule.successorCount == 1 ? 0 : std::min(i, rule.successorCount - 1));
+            if (Scope* copy = spawn(s, i, next, below, r)) {
+                copy->level = static_cast<uint16_t>(s.level + 1);
+                copy->index = static_cast<int32_t>(i);
+                copy->count = static_cast<int32_t>(n);
+            }
         }
     }
 
     void translate(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
         const float tx = argument(rule, 0, s), ty = argument(rule, 1, s), tz = argument(rule, 2, s);
         if (!finite3(tx, ty, tz)) return issue(IssueKind::InvalidTransform, r, "Translate");
-        Scope moved = childOf(s, 0);
-        moved.origin += s.x * tx + s.y * ty + s.z * tz;
-        push(moved, successor(rule, 0), below, r);
+        if (Scope* moved = spawn(s, 0, successor(rule, 0), below, r))
+            moved->origin += s.x * tx + s.y * ty + s.z * tz;
     }
 
     void rotate(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
@@ -259,12 +259,12 @@ struct BuildingExpander::Impl {
         if (!std::isfinite(degrees)) return issue(IssueKind::InvalidTransform, r, "Rotate");
         const glm::quat turn = glm::angleAxis(degrees * kDegrees, s.axis(static_cast<int>(rule.axis)));
         const glm::vec3 pivot = rule.pivot == Pivot::Center ? s.center() : s.origin;
-        Scope turned = childOf(s, 0);
-        turned.x = glm::normalize(turn * s.x);
-        turned.y = glm::normalize(turn * s.y);
-        turned.z = glm::normalize(turn * s.z);
-        turned.origin = pivot + turn * (s.origin - pivot);
-        push(turned, successor(rule, 0), below, r);
+        if (Scope* turned = spawn(s, 0, successor(rule, 0), below, r)) {
+            turned->x = glm::normalize(turn * s.x);
+            turned->y = glm::normalize(turn * s.y);
+            turned->z = glm::normalize(turn * s.z);
+            turned->origin = pivot + turn * (s.origin - pivot);
+        }
     }
 
     void choose(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
@@ -287,7 +287,7 @@ struct BuildingExpander::Impl {
                 break;
             }
         }
-        push(childOf(s, chosen), successor(rule, chosen), below, r);
+        spawn(s, chosen, successor(rule, chosen), below, r);
     }
 
     void explode(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
@@ -307,27 +307,27 @@ struct BuildingExpander::Impl {
         };
         for (uint32_t i = 5; i-- > 0;) {
             if (!(faces[i].size.x > 0.0f && faces[i].size.y > 0.0f)) continue;
-            Scope face = childOf(s, i);
-            face.origin = faces[i].origin;
-            face.x = faces[i].x;
-            face.y = faces[i].y;
-            face.z = glm::cross(face.x, face.y);
-            face.size = glm::vec3(faces[i].size, 0.0f);
-            face.dimension = 2;
-            face.index = static_cast<int32_t>(i);
-            face.count = 5;
-            push(face, successor(rule, i), below, r);
+            if (Scope* face = spawn(s, i, successor(rule, i), below, r)) {
+                face->origin = faces[i].origin;
+                face->x = faces[i].x;
+                face->y = faces[i].y;
+                face->z = glm::cross(face->x, face->y);
+                face->size = glm::vec3(faces[i].size, 0.0f);
+                face->dimension = 2;
+                face->index = static_cast<int32_t>(i);
+                face->count = 5;
+            }
         }
     }
 
     void project(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
         const int a = static_cast<int>(rule.axis), b = static_cast<int>(rule.secondAxis), c = 3 - a - b;
-        Scope projected = childOf(s, 0);
-        projected.x = s.axis(a);
-        projected.y = s.axis(b);
-        projected.z = glm::cross(projected.x, projected.y);
-        projected.size = glm::vec3(s.size[a], s.size[b], s.size[c]);
-        push(projected, successor(rule, 0), below, r);
+        if (Scope* projected = spawn(s, 0, successor(rule, 0), below, r)) {
+            projected->x = s.axis(a);
+            projected->y = s.axis(b);
+            projected->z = glm::cross(projected->x, projected->y);
+            projected->size = glm::vec3(s.size[a], s.size[b], s.size[c]);
+        }
     }
 
     void apply(WorkItem& item) {
@@ -355,7 +355,7 @@ struct BuildingExpander::Impl {
         case RuleOp::Cond: {
             const bool yes = argument(rule, 0, s) != 0.0f;
             if (yes || rule.successorCount == 2)
-                push(childOf(s, yes ? 0 : 1), successor(rule, yes ? 0 : 1), below, r);
+                spawn(s, yes ? 0 : 1, successor(rule, yes ? 0 : 1), below, r);
             return;
         }
         case RuleOp::Shape:

@@ -2,21 +2,30 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include <cmath>
+
 namespace hexlod::grammar {
 
-TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const glm::vec3& y,
-                            const glm::vec3& z, const glm::vec2& size, float depthRatio, uint16_t shape,
-                            uint32_t building) {
+namespace {
+// glm::packSnorm4x16 rounds through libm's roundf, a call per component on the hottest
+// path of expansion; adding +-0.5 and truncating rounds half away from zero the same way.
+uint32_t snorm16(float v) {
+    const float scaled = std::fmin(std::fmax(v, -1.0f), 1.0f) * 32767.0f;
+    return static_cast<uint16_t>(static_cast<int16_t>(scaled + (scaled >= 0.0f ? 0.5f : -0.5f)));
+}
+} // namespace
+
+TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const glm::vec3& y, const glm::vec3& z,
+                            const glm::vec2& size, float depthRatio, uint16_t shape, uint32_t building) {
     glm::quat q = glm::quat_cast(glm::mat3(x, y, z));
     if (q.w < 0.0f) q = -q; // q and -q are the same rotation; one sign keeps the bytes unique
-    const glm::uint64 packed = glm::packSnorm4x16(glm::vec4(q.x, q.y, q.z, q.w));
     TerminalRecord record;
     record.position[0] = position.x;
     record.position[1] = position.y;
     record.position[2] = position.z;
     record.building = building;
-    record.orientation[0] = static_cast<uint32_t>(packed);
-    record.orientation[1] = static_cast<uint32_t>(packed >> 32);
+    record.orientation[0] = snorm16(q.x) | (snorm16(q.y) << 16);
+    record.orientation[1] = snorm16(q.z) | (snorm16(q.w) << 16);
     record.size = glm::packHalf2x16(size);
     record.shapeAndDepth = shape | (static_cast<uint32_t>(glm::packHalf1x16(depthRatio)) << 16);
     return record;

@@ -48,9 +48,10 @@ std::vector<uint32_t> findCycle(const CompiledGrammar& grammar, const std::vecto
             if (successor != kNullRule && !terminates[successor]) next = successor;
         }
         if (next == kNullRule) return path;
-        const auto seen = std::find(path.begin(), path.end(), next);
+        // An index, not an iterator: push_back may reallocate the path.
+        const size_t seen = static_cast<size_t>(std::find(path.begin(), path.end(), next) - path.begin());
         path.push_back(next);
-        if (seen != path.end() - 1) return {seen, path.end()};
+        if (seen + 1 < path.size()) return {path.begin() + static_cast<std::ptrdiff_t>(seen), path.end()};
         current = next;
     }
 }
