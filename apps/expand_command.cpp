@@ -4,6 +4,7 @@
 
 #include "hexlod/grammar/batch_expander.h"
 #include "hexlod/scene/demo_footprints.h"
+#include "hexlod/scene/geojson_footprints.h"
 
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
@@ -119,6 +120,54 @@ void printStats(const nlohmann::json& stats) {
                 stats["threads"].get<unsigned>(), stats["terminals_per_second"].get<double>() / 1e6);
 }
 
+// Imported footprints with a known height get `floors = height / floor_h` when the grammar
+// has both parameters; the rest vary by seed like the demo city.
+std::vector<grammar::ParameterOverride> heightOverrides(const CompiledGrammar& g, double height) {
+    const int floors = g.findParameter("floors"), floorHeight = g.findParameter("floor_h");
+    if (floors < 0 || floorHeight < 0 || !std::isfinite(height)) return {};
+    const grammar::ParameterInfo& info = g.params[floors];
+    const double count = std::round(height / g.params[floorHeight].defaultValue);
+    return {{"floors", std::clamp(count, double(info.minValue), double(info.maxValue))}};
+}
+
+bool loadBuildings(const ExpandOptions& options, const CompiledGrammar& g,
+                   const std::vector<grammar::ParameterOverride>& overrides,
+                   std::vector<grammar::BuildingInput>& buildings) {
+    std::vector<double> heights;
+    if (!options.footprintsPath.empty()) {
+        scene::ImportedFootprints imported;
+        std::string error;
+        if (!scene::readGeoJsonFootprints(options.footprintsPath, imported, error)) {
+            std::cerr << "hexlod expand: " << error << "\n";
+            return false;
+        }
+        std::cerr << "imported " << imported.buildings.size() << " footprints from " << imported.features
+                  << " features of " << options.footprintsPath << "\n";
+        for (const auto& [reason, count] : imported.skipped) {
+            std::cerr << "  skipped " << count << " features: " << reason << "\n";
+        }
+        if (imported.holesIgnored > 0) {
+            std::cerr << "  ignored " << imported.holesIgnored
+                      << " inner rings (footprints use outer rings)\n";
+        }
+        buildings = std::move(imported.buildings);
+        heights = std::move(imported.heights);
+    } else {
+        buildings = scene::makeDemoFootprints({options.demoCount, options.seed, 60.0});
+    }
+    for (size_t i = 0; i < buildings.size(); ++i) {
+        grammar::BuildingInput& b = buildings[i];
+        std::vector<grammar::ParameterOverride> mine =
+            i < heights.size() && std::isfinite(heights[i])
+                ? heightOverrides(g, heights[i])
+                : scene::demoParameterOverrides(g, options.seed, b.id);
+        mine.insert(mine.end(), overrides.begin(), overrides.end()); // explicit --param wins
+        grammar::DiagnosticList ignored;
+        b.parameters = grammar::resolveParameters(g, mine, ignored);
+    }
+    return true;
+}
+
 } // namespace
 
 CLI::App* registerExpandCommand(CLI::App& app, ExpandOptions& o) {
@@ -127,7 +176,8 @@ CLI::App* registerExpandCommand(CLI::App& app, ExpandOptions& o) {
         ->required()
         ->check(CLI::ExistingFile);
     auto* footprints = cmd->add_option("--footprints", o.footprintsPath,
-                                       "GeoJSON footprints (not yet supported: use --demo)");
+                                       "GeoJSON footprints (Polygon, MultiPolygon in lon/lat)")
+                           ->check(CLI::ExistingFile);
     auto* demo = cmd->add_option("--demo", o.demoCount, "Expand N procedural demo footprints")
                      ->check(CLI::Range(1u, 10000000u));
     footprints->excludes(demo);
@@ -143,12 +193,7 @@ CLI::App* registerExpandCommand(CLI::App& app, ExpandOptions& o) {
 }
 
 int runExpandCommand(const ExpandOptions& options) {
-    if (!options.footprintsPath.empty()) {
-        std::cerr << "hexlod expand: --footprints needs the GeoJSON importer, which is not built yet; use "
-                     "--demo N\n";
-        return 2;
-    }
-    if (options.demoCount == 0) {
+    if (options.demoCount == 0 && options.footprintsPath.empty()) {
         std::cerr << "hexlod expand: give --demo N (or --footprints F.geojson)\n";
         return 2;
     }
@@ -174,14 +219,8 @@ int runExpandCommand(const ExpandOptions& options) {
         return 2;
     }
 
-    std::vector<grammar::BuildingInput> buildings =
-        scene::makeDemoFootprints({options.demoCount, options.seed, 60.0});
-    for (grammar::BuildingInput& b : buildings) {
-        std::vector<grammar::ParameterOverride> mine = scene::demoParameterOverrides(g, options.seed, b.id);
-        mine.insert(mine.end(), overrides.begin(), overrides.end()); // explicit --param wins
-        grammar::DiagnosticList ignored;
-        b.parameters = grammar::resolveParameters(g, mine, ignored);
-    }
+    std::vector<grammar::BuildingInput> buildings;
+    if (!loadBuildings(options, g, overrides, buildings)) return 1;
 
     const uint32_t threads =
         options.threads ? options.threads : static_cast<uint32_t>(tbb::info::default_concurrency());

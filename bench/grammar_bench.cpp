@@ -12,7 +12,9 @@ namespace {
 
 using namespace hexlod;
 
-std::string grammarPath(const char* name) { return std::string(HEXLOD_CONFIGS_DIR) + "/grammars/" + name + ".grammar"; }
+std::string grammarPath(const char* name) {
+    return std::string(HEXLOD_CONFIGS_DIR) + "/grammars/" + name + ".grammar";
+}
 
 grammar::CompiledGrammar load(const char* name) {
     grammar::DiagnosticList diagnostics;

@@ -3,6 +3,7 @@
 #include "hexlod/grammar/position_hash.h"
 
 #include <cmath>
+#include <cstring>
 
 namespace hexlod::grammar {
 
@@ -52,6 +53,15 @@ float evaluate(const Instruction* code, uint32_t count, const EvaluationInputs& 
         case Opcode::Cos:
             stack[top] = std::cos(stack[top] * kDegreesToRadians);
             break;
+        case Opcode::BuildingRandom: {
+            // Keyed by the stream number alone, so every rule reading the same stream sees the
+            // same value for the whole building (a roof style, a colour scheme).
+            const double stream = static_cast<double>(stack[top]);
+            uint64_t bits;
+            std::memcpy(&bits, &stream, sizeof(bits));
+            stack[top] = unitFloat(combineKey(inputs.buildingKey, bits));
+            break;
+        }
         default: {
             // Binary and ternary operators consume their operands from the top of the stack.
             if (in.op == Opcode::Select || in.op == Opcode::Clamp) {

@@ -138,6 +138,34 @@ void warnUnreachable(const CompiledGrammar& grammar, DiagnosticList& diagnostics
     }
 }
 
+uint64_t hashBytes(uint64_t hash, const void* data, size_t size);
+
+// Declared but never emitted or read: worth a warning, since a scene bakes impostors only
+// for shapes its grammars emit and a parameter nobody reads is usually a typo elsewhere.
+void warnUnused(const GrammarAst& ast, const CompiledGrammar& grammar, DiagnosticList& diagnostics) {
+    std::vector<bool> shapeUsed(grammar.shapes.size(), false), paramUsed(grammar.params.size(), false);
+    for (const CompiledRule& rule : grammar.rules) {
+        if (rule.op == RuleOp::Shape) shapeUsed[rule.shape] = true;
+    }
+    for (const Instruction& in : grammar.code) {
+        if (in.op == Opcode::LoadParam) paramUsed[in.operand.index] = true;
+    }
+    for (const ParamDecl& param : ast.params) {
+        const int index = grammar.findParameter(param.name);
+        // wall_material is read by the extruded set (LOD0), not by rules.
+        if (index >= 0 && !paramUsed[index] && param.name != "wall_material") {
+            diagnostics.warning(param.location, "parameter '" + param.name + "' is declared but never read");
+        }
+    }
+    for (const ShapeDeclAst& shape : ast.shapes) {
+        const int index = grammar.findShape(shape.name);
+        if (index >= 0 && !shapeUsed[index]) {
+            diagnostics.warning(shape.location,
+                                "shape '" + shape.name + "' is declared but no rule emits it");
+        }
+    }
+}
+
 uint64_t hashBytes(uint64_t hash, const void* data, size_t size) {
     const auto* bytes = static_cast<const unsigned char*>(data);
     for (size_t i = 0; i < size; ++i) hash = (hash ^ bytes[i]) * 0x100000001b3ull; // FNV-1a
@@ -154,6 +182,7 @@ uint64_t hashString(uint64_t hash, const std::string& s) {
 uint64_t contentHash(const CompiledGrammar& g) {
     uint64_t h = 0xcbf29ce484222325ull;
     for (const CompiledRule& r : g.rules) {
+        h = hashValue(h, r.key);
         const uint32_t fields[] = {uint32_t(r.op),   uint32_t(r.axis),  uint32_t(r.secondAxis),
                                    uint32_t(r.mode), uint32_t(r.pivot), uint32_t(r.extrudedStop),
                                    r.shape,          r.firstArgument,   r.argumentCount,
@@ -229,6 +258,11 @@ CompiledGrammar compileGrammar(std::string_view source, const std::string& fileN
     checkTermination(grammar, diagnostics);
     if (diagnostics.hasErrors()) return {};
     warnUnreachable(grammar, diagnostics);
+    warnUnused(ast, grammar, diagnostics);
+    for (uint32_t r = 0; r < grammar.rules.size(); ++r) {
+        const std::string& name = grammar.ruleNames[r];
+        grammar.rules[r].key = hashBytes(0xcbf29ce484222325ull, name.data(), name.size());
+    }
     grammar.contentHash = contentHash(grammar);
     return grammar;
 }

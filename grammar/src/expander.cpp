@@ -42,6 +42,7 @@ struct BuildingExpander::Impl {
     BuildingOutput* out = nullptr;
     const float* params = nullptr;
     uint32_t building = 0;
+    uint64_t buildingKey = 0;
     uint32_t atom = 0, atomCount = 0;
     float baseZ = 0.0f;
     glm::vec3 worldNormal{0.0f};
@@ -84,11 +85,11 @@ struct BuildingExpander::Impl {
     }
 
     float argument(const CompiledRule& rule, uint32_t i, const Scope& s) {
-        const uint32_t slot = rule.firstArgument + i;
-        const Expression& e = grammar.expressions[grammar.arguments[slot].expression];
+        const Expression& e = grammar.expressions[grammar.arguments[rule.firstArgument + i].expression];
         if (e.isConstant) return e.constantValue;
         if (accessorScope != &s) fillAccessors(s);
-        return evaluate(&grammar.code[e.first], e.count, {params, accessors, combineKey(s.key, slot)});
+        return evaluate(&grammar.code[e.first], e.count,
+                        {params, accessors, combineKey(s.key, rule.key + i), buildingKey});
     }
 
     uint32_t successor(const CompiledRule& rule, uint32_t i) const {
@@ -277,7 +278,7 @@ struct BuildingExpander::Impl {
         }
         if (!(total > 0.0f) || !std::isfinite(total)) return issue(IssueKind::InvalidProbability, r);
         // The pick hashes the scope's position key with the rule, never a running counter.
-        const float pick = unitFloat(combineKey(s.key, r)) * total;
+        const float pick = unitFloat(combineKey(s.key, rule.key)) * total;
         uint32_t chosen = rule.argumentCount - 1;
         float cumulative = 0.0f;
         for (uint32_t i = 0; i < rule.argumentCount; ++i) {
@@ -414,6 +415,7 @@ struct BuildingExpander::Impl {
         out = &output;
         output = BuildingOutput{};
         building = input.id;
+        buildingKey = combineKey(combineKey(settings.seed, building), 0xb01d1e5ull);
         params = input.parameters.data();
         std::vector<float> defaults;
         if (input.parameters.size() != grammar.params.size()) {

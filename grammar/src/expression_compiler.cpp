@@ -40,10 +40,19 @@ struct FunctionName {
     int arity;
 };
 constexpr FunctionName kFunctions[] = {
-    {"min", Opcode::Min, 2},     {"max", Opcode::Max, 2},     {"abs", Opcode::Abs, 1},
-    {"floor", Opcode::Floor, 1}, {"ceil", Opcode::Ceil, 1},   {"round", Opcode::Round, 1},
-    {"sqrt", Opcode::Sqrt, 1},   {"sin", Opcode::Sin, 1},     {"cos", Opcode::Cos, 1},
-    {"pow", Opcode::Pow, 2},     {"clamp", Opcode::Clamp, 3}, {"rand", Opcode::Random, 2},
+    {"min", Opcode::Min, 2},
+    {"max", Opcode::Max, 2},
+    {"abs", Opcode::Abs, 1},
+    {"floor", Opcode::Floor, 1},
+    {"ceil", Opcode::Ceil, 1},
+    {"round", Opcode::Round, 1},
+    {"sqrt", Opcode::Sqrt, 1},
+    {"sin", Opcode::Sin, 1},
+    {"cos", Opcode::Cos, 1},
+    {"pow", Opcode::Pow, 2},
+    {"clamp", Opcode::Clamp, 3},
+    {"rand", Opcode::Random, 2},
+    {"building_rand", Opcode::BuildingRandom, 1},
 };
 
 constexpr float kPi = 3.14159265358979323846f;
@@ -228,7 +237,8 @@ private:
                     return std::nullopt;
                 }
             }
-            if (function.op == Opcode::Random) dependsOnInputs = true;
+            if (function.op == Opcode::Random || function.op == Opcode::BuildingRandom)
+                dependsOnInputs = true;
             push(function.op, 0.0f);
             return ValueType::Number;
         }

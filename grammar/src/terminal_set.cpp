@@ -15,8 +15,9 @@ uint32_t snorm16(float v) {
 }
 } // namespace
 
-TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const glm::vec3& y, const glm::vec3& z,
-                            const glm::vec2& size, float depthRatio, uint16_t shape, uint32_t building) {
+TerminalRecord packTerminal(const glm::vec3& position, const glm::vec3& x, const glm::vec3& y,
+                            const glm::vec3& z, const glm::vec2& size, float depthRatio, uint16_t shape,
+                            uint32_t building) {
     glm::quat q = glm::quat_cast(glm::mat3(x, y, z));
     if (q.w < 0.0f) q = -q; // q and -q are the same rotation; one sign keeps the bytes unique
     TerminalRecord record;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <string>
 
 namespace hexlod::grammar {
@@ -285,6 +286,52 @@ TEST(Rules, WorldNormalIgnoresRotation) {
     const auto t = run("Go -> Extrude(4) { F, NULL }; F -> Rotate(origin, y, 90) { R };"
                        "R -> Cond(world_normal_y < -0.9 && normal_x > 0.9) { A, NULL }; A -> Shape(a);");
     EXPECT_EQ(t.size(), 1u);
+}
+
+} // namespace
+} // namespace hexlod::grammar
+
+namespace hexlod::grammar {
+namespace {
+
+TEST(Rules, BuildingRandIsOneValuePerBuildingAndStream) {
+    // Every tile of every edge reads stream 1: all tiles of one building pick alike.
+    const std::string source = std::string(kShapes) +
+                               "Go -> Extrude(4) { F, NULL }; F -> Repeat(x, 1, equal) { T };"
+                               "T -> Cond(building_rand(1) < 0.5) { A, B }; A -> Shape(a); B -> Shape(b);";
+    const CompiledGrammar g = compileOrFail(source);
+    std::set<uint16_t> shapesSeen;
+    for (uint32_t building = 0; building < 16; ++building) {
+        const auto t = expandOne(g, rectangle(20, 12), {}, building).terminals;
+        ASSERT_EQ(t.size(), 64u);
+        std::set<uint16_t> shapes;
+        for (const Terminal& terminal : t) shapes.insert(terminal.shape);
+        EXPECT_EQ(shapes.size(), 1u) << "building " << building;
+        shapesSeen.insert(shapes.begin(), shapes.end());
+    }
+    EXPECT_EQ(shapesSeen.size(), 2u); // and buildings differ
+}
+
+TEST(Rules, AddingOrReorderingRulesKeepsRandomPicks) {
+    const std::string rules = "Go -> Extrude(rand(3, 9)) { F, NULL }; F -> Repeat(x, 0.5, equal) { T };"
+                              "T -> Choose(1: A, 1: B); A -> Shape(a); B -> Shape(b);";
+    const std::string reordered = "Go -> Extrude(rand(3, 9)) { F, NULL }; Extra -> Shape(c);"
+                                  "B -> Shape(b); T -> Choose(1: A, 1: B); A -> Shape(a);"
+                                  "F -> Repeat(x, 0.5, equal) { T };";
+    const auto before = run(rules), after = run(reordered);
+    ASSERT_EQ(before.size(), after.size());
+    for (size_t i = 0; i < before.size(); ++i) {
+        EXPECT_EQ(before[i].shape, after[i].shape) << i;
+        EXPECT_EQ(before[i].size.y, after[i].size.y) << i;
+    }
+}
+
+TEST(Rules, UnusedShapesAndParametersAreWarnings) {
+    const std::string errors = test::compileErrors("param used = 1 in [0, 2];\nparam spare = 1 in [0, 2];\n"
+                                                   "shape a(triangles = 2);\nshape b(triangles = 2);\n"
+                                                   "A -> Extrude(used) { S, NULL }; S -> Shape(a);");
+    EXPECT_EQ(errors, "test.grammar:2:7: warning: parameter 'spare' is declared but never read\n"
+                      "test.grammar:4:7: warning: shape 'b' is declared but no rule emits it\n");
 }
 
 } // namespace

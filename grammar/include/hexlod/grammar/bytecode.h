@@ -38,7 +38,8 @@ enum class Opcode : uint8_t {
     Cos, // degrees
     Pow,
     Clamp,
-    Random, // rand(lo, hi), keyed by scope position and call site
+    Random,         // rand(lo, hi), keyed by scope position and call site
+    BuildingRandom, // building_rand(stream): one value per building and stream
 };
 
 // Scope accessors readable from expressions; see docs/grammar.md for their meaning.
@@ -89,6 +90,7 @@ struct EvaluationInputs {
     const float* params = nullptr;
     const float* accessors = nullptr; // kAccessorCount values for the current scope
     uint64_t randomKey = 0;           // position key of the scope; rand() mixes in its call site
+    uint64_t buildingKey = 0;         // seed and building only, for building_rand()
 };
 
 // Runs `count` instructions starting at `code`. The compiler guarantees a stack depth of at

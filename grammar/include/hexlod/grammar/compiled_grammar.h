@@ -46,6 +46,8 @@ struct CompiledRule {
     RepeatMode mode = RepeatMode::Fit;
     Pivot pivot = Pivot::Origin;
     bool extrudedStop = false;  // scopes entering this rule form the extruded set
+    uint64_t key = 0;           // hash of the rule name: keys Choose and rand(), so adding or reordering
+                                // other rules leaves every random pick alone
     uint16_t shape = 0;         // Shape
     uint32_t firstArgument = 0; // into CompiledGrammar::arguments
     uint32_t argumentCount = 0;
