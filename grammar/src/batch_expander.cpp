@@ -65,23 +65,38 @@ void gatherExtruded(const CompiledGrammar& grammar, const std::vector<BuildingOu
 }
 
 // Counting sort by shape, stable in building order, so each shape is one contiguous range.
+// Buildings are cut into chunks that count and scatter in parallel; chunk-major offsets keep
+// the result identical to a sequential pass whatever the thread count.
 void gatherTerminals(const CompiledGrammar& grammar, const std::vector<BuildingOutput>& outputs,
                      TerminalSet& set) {
     const size_t shapes = grammar.shapes.size();
+    const size_t chunks = std::min<size_t>(outputs.size(), 256);
+    auto chunkBegin = [&](size_t c) { return outputs.size() * c / std::max<size_t>(chunks, 1); };
+    std::vector<size_t> offsets(chunks * shapes, 0); // counts first, then start offsets
+    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+        size_t* counts = &offsets[c * shapes];
+        for (size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+            for (const TerminalRecord& t : outputs[i].terminals) ++counts[t.shapeAndDepth & 0xffffu];
+        }
+    });
     set.countPerShape.assign(shapes, 0);
-    for (const BuildingOutput& out : outputs) {
-        for (const TerminalRecord& t : out.terminals) ++set.countPerShape[t.shapeAndDepth & 0xffffu];
-    }
-    std::vector<size_t> cursor(shapes, 0);
     size_t total = 0;
     for (size_t s = 0; s < shapes; ++s) {
-        cursor[s] = total;
-        total += set.countPerShape[s];
+        for (size_t c = 0; c < chunks; ++c) {
+            const size_t count = offsets[c * shapes + s];
+            offsets[c * shapes + s] = total;
+            total += count;
+            set.countPerShape[s] += static_cast<uint32_t>(count);
+        }
     }
     set.records.resize(total);
-    for (const BuildingOutput& out : outputs) {
-        for (const TerminalRecord& t : out.terminals) set.records[cursor[t.shapeAndDepth & 0xffffu]++] = t;
-    }
+    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+        size_t* cursor = &offsets[c * shapes];
+        for (size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+            for (const TerminalRecord& t : outputs[i].terminals)
+                set.records[cursor[t.shapeAndDepth & 0xffffu]++] = t;
+        }
+    });
 }
 
 } // namespace

@@ -56,3 +56,39 @@ TEST(TerminalRecord, HalfSizesCoverTenKilometreFacades) {
 
 } // namespace
 } // namespace hexlod::grammar
+
+#include <glm/gtc/packing.hpp>
+
+#include <cstring>
+#include <limits>
+
+namespace hexlod::grammar {
+namespace {
+
+// The record's own half conversion must agree with glm's reference on every value class.
+TEST(TerminalRecord, HalfPackingMatchesTheReference) {
+    const float values[] = {0.0f,     -0.0f,
+                            1.0f,     -1.0f,
+                            0.1f,     2.857142857f,
+                            65504.0f, 65519.0f,
+                            65520.0f, 1e6f,
+                            6.1e-5f,  6.0e-8f,
+                            1e-9f,    3.0e-5f,
+
+                            0.33333f, std::numeric_limits<float>::infinity()};
+    for (float v : values) {
+        const TerminalRecord r = packTerminal({}, {1, 0, 0}, {0, 0, 1}, {0, -1, 0}, {v, -v}, 0.0f, 0, 0);
+        EXPECT_EQ(r.size, glm::packHalf2x16(glm::vec2(v, -v))) << v;
+    }
+    const TerminalRecord nan = packTerminal({}, {1, 0, 0}, {0, 0, 1}, {0, -1, 0},
+                                            {std::numeric_limits<float>::quiet_NaN(), 1.0f}, 0.0f, 0, 0);
+    EXPECT_TRUE(std::isnan(unpackTerminal(nan).size.x));
+    // Exact ties round to even as IEEE 754 does (glm rounds them away from zero): halves are
+    // 0.5 apart at 1000, so 1000.25 becomes 1000 and 1000.75 becomes 1001.
+    const TerminalRecord ties =
+        packTerminal({}, {1, 0, 0}, {0, 0, 1}, {0, -1, 0}, {1000.25f, 1000.75f}, 0.0f, 0, 0);
+    EXPECT_EQ(unpackTerminal(ties).size, glm::vec2(1000.0f, 1001.0f));
+}
+
+} // namespace
+} // namespace hexlod::grammar
