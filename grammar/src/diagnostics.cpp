@@ -1,5 +1,8 @@
 #include "hexlod/grammar/diagnostics.h"
 
+#include <algorithm>
+#include <tuple>
+
 namespace hexlod::grammar {
 
 std::string formatDiagnostic(const Diagnostic& diagnostic) {
@@ -21,6 +24,12 @@ void DiagnosticList::error(const SourceLocation& where, std::string message) {
 
 void DiagnosticList::warning(const SourceLocation& where, std::string message) {
     items_.push_back({Severity::Warning, where, std::move(message)});
+}
+
+void DiagnosticList::sortByLocation() {
+    std::stable_sort(items_.begin(), items_.end(), [](const Diagnostic& a, const Diagnostic& b) {
+        return std::tie(a.location.line, a.location.column) < std::tie(b.location.line, b.location.column);
+    });
 }
 
 std::string DiagnosticList::formatAll() const {

@@ -102,6 +102,13 @@ struct BuildingExpander::Impl {
     // is valid until the next spawn.
     Scope* spawn(const Scope& parent, uint64_t slot, uint32_t rule, bool belowStop, uint32_t parentRule) {
         if (rule == kNullRule) return nullptr;
+        if (stack.size() >= settings.limits.maxPendingScopes) {
+            issue(IssueKind::AtomOperationCap, parentRule,
+                  "more than " + std::to_string(settings.limits.maxPendingScopes) +
+                      " scopes waiting on atom " + std::to_string(atom));
+            atomAborted = true;
+            return nullptr;
+        }
         if (parent.depth >= settings.limits.maxDepth) {
             issue(IssueKind::DepthCap, parentRule, "depth " + std::to_string(parent.depth + 1));
             return nullptr;
@@ -132,7 +139,7 @@ struct BuildingExpander::Impl {
             if (std::isfinite(given) && given >= 0.0f) {
                 ratio = given;
             } else {
-                issue(IssueKind::InvalidSize, ruleIndex, "depth ratio");
+                issue(IssueKind::InvalidSize, ruleIndex, "depth ratio; the shape's default was used");
             }
         }
         out->terminals.push_back(packTerminal(s.origin, s.x, s.y, s.z, glm::vec2(s.size.x, s.size.y), ratio,
@@ -144,7 +151,7 @@ struct BuildingExpander::Impl {
         const float scale = rule.argumentCount > 1 ? argument(rule, 1, s) : 1.0f;
         const float twist = rule.argumentCount > 2 ? argument(rule, 2, s) : 0.0f;
         if (!finite3(height, scale, twist) || height < 0.0f || scale < 0.0f) {
-            return issue(IssueKind::InvalidSize, r, "Extrude height or scale");
+            return issue(IssueKind::InvalidSize, r, "Extrude height or scale; the scope was dropped");
         }
         if (s.dimension == 3) return issue(IssueKind::WrongScopeKind, r, "Extrude needs an atom or a face");
         // An atom grows along its up axis into a face; a face grows along its normal into a box.
@@ -179,7 +186,7 @@ struct BuildingExpander::Impl {
         }
         const int axis = static_cast<int>(rule.axis);
         if (splitSizes(s.size[axis], sizes.data(), relative, n, parts.data()) != SubdivisionStatus::Ok) {
-            issue(IssueKind::InvalidSize, r, "Split size");
+            issue(IssueKind::InvalidSize, r, "Split size; treated as 0");
         }
         float offset = 0.0f;
         for (uint32_t i = 0; i < n; ++i) offset += parts[i];
@@ -199,13 +206,17 @@ struct BuildingExpander::Impl {
 
     void repeat(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
         const int axis = static_cast<int>(rule.axis);
-        const uint32_t budget = settings.limits.maxOperationsPerAtom -
-                                std::min(atomOperations, settings.limits.maxOperationsPerAtom);
+        // Tiles count against both the work left and the room left on the stack, so a tile
+        // size tending to 0 is refused up front instead of allocating gigabytes.
+        const ExpansionLimits& limits = settings.limits;
+        const uint32_t budget = std::min(
+            limits.maxOperationsPerAtom - std::min(atomOperations, limits.maxOperationsPerAtom),
+            limits.maxPendingScopes - std::min(static_cast<uint32_t>(stack.size()), limits.maxPendingScopes));
         RepeatLayout layout;
         const SubdivisionStatus status =
             repeatLayout(s.size[axis], argument(rule, 0, s), rule.mode, budget, layout);
         if (status == SubdivisionStatus::InvalidSize)
-            return issue(IssueKind::InvalidSize, r, "Repeat tile size");
+            return issue(IssueKind::InvalidSize, r, "Repeat tile size; the scope was dropped");
         if (status == SubdivisionStatus::TooManyTiles) return issue(IssueKind::TooManyTiles, r);
         const glm::vec3 direction = s.axis(axis);
         if (rule.successorCount == 2 && layout.margin > 0.0f) {

@@ -9,11 +9,11 @@ const char* issueKindName(IssueKind kind) {
     case IssueKind::AtomTerminalCap:
         return "terminal cap per atom reached; the atom's terminals were dropped";
     case IssueKind::AtomOperationCap:
-        return "rule-application cap per atom reached; the atom's terminals were dropped";
+        return "work cap per atom reached; the atom's terminals were dropped";
     case IssueKind::BatchTerminalCap:
         return "terminal cap per batch reached; the batch was not generated";
     case IssueKind::InvalidSize:
-        return "size is NaN, infinite or negative; treated as 0";
+        return "size is NaN, infinite or negative";
     case IssueKind::TooManyTiles:
         return "Repeat would exceed the work cap; the scope was dropped";
     case IssueKind::InvalidCount:

@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <limits>
 
 namespace hexlod::grammar {
 
@@ -203,18 +205,24 @@ std::vector<Token> tokenize(std::string_view source, const std::string& fileName
         if (isDigit(c) || (c == '.' && i + 1 < source.size() && isDigit(source[i + 1]))) {
             size_t end = i;
             while (end < source.size() && (isDigit(source[end]) || source[end] == '.')) ++end;
+            // An exponent marker belongs to the number even without digits, so "1.5e" is one
+            // malformed number rather than 1.5 followed by a name 'e'.
             if (end < source.size() && (source[end] == 'e' || source[end] == 'E')) {
-                size_t exp = end + 1;
-                if (exp < source.size() && (source[exp] == '+' || source[exp] == '-')) ++exp;
-                if (exp < source.size() && isDigit(source[exp])) {
-                    end = exp;
-                    while (end < source.size() && isDigit(source[end])) ++end;
-                }
+                ++end;
+                if (end < source.size() && (source[end] == '+' || source[end] == '-')) ++end;
+                while (end < source.size() && isDigit(source[end])) ++end;
             }
             token.kind = TokenKind::Number;
             token.text = source.substr(start, end - start);
             const auto [ptr, ec] = std::from_chars(source.data() + start, source.data() + end, token.number);
-            if (ec != std::errc() || ptr != source.data() + end) {
+            // Values are evaluated as 32-bit floats, so anything beyond their range is an error
+            // here rather than a silent infinity later.
+            if (ec == std::errc::result_out_of_range ||
+                (ec == std::errc() && std::fabs(token.number) > std::numeric_limits<float>::max())) {
+                diagnostics.error({fileName, line, column}, "number '" + std::string(token.text) +
+                                                                "' is out of range (at most about 3.4e38)");
+                token.number = 0.0;
+            } else if (ec != std::errc() || ptr != source.data() + end) {
                 diagnostics.error({fileName, line, column},
                                   "malformed number '" + std::string(token.text) + "'");
                 token.number = 0.0;

@@ -67,6 +67,19 @@ private:
         return next();
     }
 
+    // A ';' forgotten at the end of a line is reported just after the statement, where the
+    // user forgot it, and parsing goes on: the next line is usually a whole statement with its
+    // own errors. Anything else on the same line is an unexpected token, reported where it is.
+    void endStatement(const std::string& context) {
+        if (accept(TokenKind::Semicolon)) return;
+        const Token& last = tokens_[position_ > 0 ? position_ - 1 : 0];
+        if (peek().kind != TokenKind::End && peek().line == last.line) {
+            fail(peek(), "expected ';' " + context + ", found " + describe(peek()));
+        }
+        const uint32_t width = static_cast<uint32_t>(last.text.size());
+        diagnostics_.error({fileName_, last.line, last.column + width}, "expected ';' " + context);
+    }
+
     // Skips to just after the next ';' (or to a '}' ending a successor block at statement level).
     void recover() {
         while (peek().kind != TokenKind::End) {
@@ -111,7 +124,7 @@ private:
         expect(TokenKind::Comma, "between the range bounds");
         param.maxValue = signedNumber("as the range maximum");
         expect(TokenKind::RBracket, "to close the parameter range");
-        expect(TokenKind::Semicolon, "after the parameter declaration");
+        endStatement("after the parameter declaration");
         ast.params.push_back(std::move(param));
     }
 
@@ -132,7 +145,7 @@ private:
             } while (accept(TokenKind::Comma));
         }
         expect(TokenKind::RParen, "to close the shape declaration");
-        expect(TokenKind::Semicolon, "after the shape declaration");
+        endStatement("after the shape declaration");
         ast.shapes.push_back(std::move(shape));
     }
 
@@ -147,7 +160,7 @@ private:
             const Token& name = expect(TokenKind::Identifier, "as a rule name in extruded_set");
             ast.extrudedStops.push_back({std::string(name.text), locationOf(name)});
         } while (accept(TokenKind::Comma));
-        expect(TokenKind::Semicolon, "after extruded_set");
+        endStatement("after extruded_set");
     }
 
     // Name -> Operation(args) { successors };
@@ -178,13 +191,14 @@ private:
             }
             expect(TokenKind::RBrace, "to close the successor list");
         }
-        expect(TokenKind::Semicolon, "after the rule '" + rule.name + "'");
+        endStatement("after the rule '" + rule.name + "'");
         ast.rules.push_back(std::move(rule));
     }
 
     RuleArgument argument() {
         RuleArgument arg;
         expressionNodes_ = 0;
+        arg.relativeLocation = locationOf(peek());
         arg.relative = accept(TokenKind::Tilde);
         arg.value = expression(0);
         if (accept(TokenKind::Colon)) {
@@ -325,7 +339,9 @@ private:
 GrammarAst parseGrammar(std::string_view source, const std::string& fileName, DiagnosticList& diagnostics) {
     std::vector<Token> tokens = tokenize(source, fileName, diagnostics);
     Parser parser(std::move(tokens), fileName, diagnostics);
-    return parser.parse();
+    GrammarAst ast = parser.parse();
+    diagnostics.sortByLocation();
+    return ast;
 }
 
 } // namespace hexlod::grammar

@@ -88,7 +88,7 @@ private:
     }
 
     bool plain(const RuleArgument& argument) {
-        if (argument.relative) return fail(argument.value->location, "'~' sizes are only allowed in Split");
+        if (argument.relative) return fail(argument.relativeLocation, "'~' sizes are only allowed in Split");
         if (!argument.label.empty()) {
             return fail(argument.labelLocation, "':' successors are only allowed in Choose");
         }
@@ -210,9 +210,16 @@ private:
     bool branch() {
         if (!numbers(1, 1, "Branch(n) {A} or Branch(n) {A1, ..., An}")) return false;
         const Expression& count = grammar_.expressions[grammar_.arguments[out_.firstArgument].expression];
-        if (count.isConstant && count.constantValue >= 1.0f && count.constantValue <= 1024.0f) {
-            const size_t n = static_cast<size_t>(count.constantValue);
-            if (decl_.successors.size() == n && n > 1) return successors(n, n);
+        if (count.isConstant && count.constantValue >= 0.5f && count.constantValue < 1024.5f) {
+            // Rounded as the expander rounds it, so Branch(2.6) checks for 3 successors.
+            const size_t n = static_cast<size_t>(std::nearbyint(count.constantValue));
+            const size_t given = decl_.successors.size();
+            if (n > 1 && given == n) return successors(n, n);
+            if (n > 1 && decl_.hasSuccessorBlock && given != 1) {
+                return fail(decl_.operationLocation, "wrong number of successors for Branch: expected 1 or " +
+                                                         std::to_string(n) + " in { }, found " +
+                                                         std::to_string(given));
+            }
         } else if (count.isConstant) {
             return fail(decl_.arguments[0].value->location, "Branch count must be between 1 and 1024");
         }
@@ -278,7 +285,7 @@ private:
                 return fail(argument.value->location, "Choose needs 'probability: Successor' pairs");
             }
             if (argument.relative)
-                return fail(argument.value->location, "'~' sizes are only allowed in Split");
+                return fail(argument.relativeLocation, "'~' sizes are only allowed in Split");
             const std::optional<uint32_t> expression = compileExpression(
                 *argument.value, ValueType::Number, "a probability of Choose", grammar_, diagnostics_);
             if (!expression) return false;

@@ -20,7 +20,8 @@ std::vector<bool> terminatingRules(const CompiledGrammar& grammar) {
             if (terminates[r]) continue;
             const CompiledRule& rule = grammar.rules[r];
             const bool all = needsAllSuccessors(rule.op);
-            bool result = all;
+            // A Cond without an else drops the scope when false: an implicit NULL that ends.
+            bool result = all || (rule.op == RuleOp::Cond && rule.successorCount == 1);
             for (uint32_t s = 0; s < rule.successorCount; ++s) {
                 const uint32_t successor = grammar.successors[rule.firstSuccessor + s];
                 const bool ends = successor == kNullRule || terminates[successor];
@@ -64,6 +65,12 @@ void checkTermination(const CompiledGrammar& grammar, DiagnosticList& diagnostic
     for (uint32_t r = 0; r < grammar.rules.size(); ++r) {
         if (terminates[r] || reported[r]) continue;
         const std::vector<uint32_t> cycle = findCycle(grammar, terminates, r);
+        reported[r] = true;
+        // A rule that only leads into a cycle already reported is its victim, not a new error.
+        if (std::all_of(cycle.begin(), cycle.end(),
+                        [&](uint32_t rule) { return reported[rule] && rule != r; })) {
+            continue;
+        }
         std::string chain;
         for (const uint32_t rule : cycle) {
             chain += (chain.empty() ? "" : " -> ") + grammar.ruleNames[rule];

@@ -25,6 +25,7 @@ using ExprPtr = std::unique_ptr<ExprNode>;
 // One argument of a rule operation: `expr`, `~expr` (relative size) or `expr: Successor` (Choose).
 struct RuleArgument {
     bool relative = false;
+    SourceLocation relativeLocation; // of the '~'
     ExprPtr value;
     std::string label; // successor name after ':', empty if none
     SourceLocation labelLocation;

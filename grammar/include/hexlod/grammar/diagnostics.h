@@ -32,6 +32,8 @@ public:
     bool hasErrors() const { return errorCount_ > 0; }
     const std::vector<Diagnostic>& all() const { return items_; }
     std::string formatAll() const;
+    // Lexer and parser report in two passes; users read errors in file order.
+    void sortByLocation();
 
 private:
     std::vector<Diagnostic> items_;

@@ -18,6 +18,7 @@ struct ExpansionLimits {
     uint32_t maxDepth = 256;                    // rule applications on one derivation path
     uint32_t maxTerminalsPerAtom = 1u << 20;    // ~1M: a 1000-floor tower face fits easily
     uint32_t maxOperationsPerAtom = 1u << 23;   // rule applications per atom, bounds Branch blow-ups
+    uint32_t maxPendingScopes = 1u << 20;       // scopes waiting on the stack: bounds memory (~100 MiB)
     uint64_t maxTerminalsPerBatch = 1ull << 25; // 32M records = 1 GiB
 };
 
