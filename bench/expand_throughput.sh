@@ -29,5 +29,5 @@ for grammar in residential business; do
     done
 done
 echo "]" >>"$json"
-column -s, -t <"$csv"
+cat "$csv"
 echo "wrote $csv and $json"

@@ -37,6 +37,10 @@ struct BuildingExpander::Impl {
     ExpansionSettings settings;
     std::vector<WorkItem> stack;
     std::vector<float> sizes, parts;
+    // Terminals of the building being expanded. It keeps its capacity across buildings and
+    // is copied out once at its final size: growing a fresh vector per building crossed
+    // malloc's mmap threshold and spent a third of the time clearing new pages.
+    std::vector<TerminalRecord> terminals;
 
     // Per building and per atom state.
     BuildingOutput* out = nullptr;
@@ -142,8 +146,8 @@ struct BuildingExpander::Impl {
                 issue(IssueKind::InvalidSize, ruleIndex, "depth ratio; the shape's default was used");
             }
         }
-        out->terminals.push_back(packTerminal(s.origin, s.x, s.y, s.z, glm::vec2(s.size.x, s.size.y), ratio,
-                                              rule.shape, building));
+        terminals.push_back(packTerminal(s.origin, s.x, s.y, s.z, glm::vec2(s.size.x, s.size.y), ratio,
+                                         rule.shape, building));
     }
 
     void extrude(const Scope& s, const CompiledRule& rule, uint32_t r, bool below) {
@@ -396,7 +400,7 @@ struct BuildingExpander::Impl {
         s.count = static_cast<int32_t>(atomCount);
         worldNormal = s.z;
 
-        const size_t terminalStart = out->terminals.size(), elementStart = out->elements.size();
+        const size_t terminalStart = terminals.size(), elementStart = out->elements.size();
         atomTerminals = atomOperations = 0;
         atomAborted = false;
         stack.clear();
@@ -416,7 +420,7 @@ struct BuildingExpander::Impl {
         }
         if (atomAborted) {
             // An atom is either whole or absent: a half-built facade would be a silent wrong result.
-            out->terminals.resize(terminalStart);
+            terminals.resize(terminalStart);
             out->elements.resize(elementStart);
             stack.clear();
         }
@@ -451,10 +455,12 @@ struct BuildingExpander::Impl {
         output.atoms = atomCount;
         output.footprint.reserve(atomCount);
         for (const glm::dvec2& p : clean.points) output.footprint.emplace_back(p);
+        terminals.clear();
         for (atom = 0; atom < atomCount; ++atom) {
             const glm::dvec2 a = clean.points[atom], b = clean.points[(atom + 1) % atomCount];
             expandAtom(glm::vec3(glm::vec2(a), baseZ), glm::vec3(glm::vec2(b), baseZ));
         }
+        output.terminals.assign(terminals.begin(), terminals.end());
     }
 };
 
