@@ -76,7 +76,7 @@ void gatherTerminals(const CompiledGrammar& grammar, const std::vector<BuildingO
     tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
         size_t* counts = &offsets[c * shapes];
         for (size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
-            for (const TerminalRecord& t : outputs[i].terminals) ++counts[t.shapeAndDepth & 0xffffu];
+            for (const TerminalRecord& t : outputs[i].arenaTerminals) ++counts[t.shapeAndDepth & 0xffffu];
         }
     });
     set.countPerShape.assign(shapes, 0);
@@ -93,7 +93,7 @@ void gatherTerminals(const CompiledGrammar& grammar, const std::vector<BuildingO
     tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
         size_t* cursor = &offsets[c * shapes];
         for (size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
-            for (const TerminalRecord& t : outputs[i].terminals)
+            for (const TerminalRecord& t : outputs[i].arenaTerminals)
                 set.records[cursor[t.shapeAndDepth & 0xffffu]++] = t;
         }
     });
@@ -111,11 +111,17 @@ BatchResult expandBatch(const BatchInput& input) {
 
     const std::vector<uint32_t> order = orderById(input.buildings);
     std::vector<BuildingOutput> outputs(order.size());
-    tbb::enumerable_thread_specific<BuildingExpander> expanders(std::cref(grammar),
-                                                                std::cref(input.settings));
+    // Each worker appends its buildings' terminals to its own arena; buildings remember
+    // their span, so the gather below still reads them in building-id order.
+    struct Worker {
+        Worker(const CompiledGrammar& g, const ExpansionSettings& s) : expander(g, s) {}
+        BuildingExpander expander;
+        TerminalArena arena;
+    };
+    tbb::enumerable_thread_specific<Worker> workers(std::cref(grammar), std::cref(input.settings));
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, order.size(), 16), [&](const tbb::blocked_range<size_t>& range) {
-            BuildingExpander& expander = expanders.local();
+            Worker& worker = workers.local();
             for (size_t i = range.begin(); i != range.end(); ++i) {
                 if (i > 0 && input.buildings[order[i]].id == input.buildings[order[i - 1]].id) {
                     outputs[i].skipped = true;
@@ -123,14 +129,14 @@ BatchResult expandBatch(const BatchInput& input) {
                         {IssueKind::DuplicateBuilding, kNullRule, input.buildings[order[i]].id, {}});
                     continue;
                 }
-                expander.expand(input.buildings[order[i]], outputs[i]);
+                worker.expander.expand(input.buildings[order[i]], outputs[i], worker.arena);
             }
         });
 
     foldIssues(outputs, result);
     uint64_t terminals = 0;
     for (const BuildingOutput& out : outputs) {
-        terminals += out.terminals.size();
+        terminals += out.arenaTerminals.size();
         result.atoms += out.atoms;
         ++(out.skipped ? result.buildingsSkipped : result.buildingsExpanded);
     }

@@ -426,9 +426,10 @@ struct BuildingExpander::Impl {
         }
     }
 
-    void expand(const BuildingInput& input, BuildingOutput& output) {
+    void expand(const BuildingInput& input, BuildingOutput& output, TerminalArena* arena) {
         out = &output;
         output = BuildingOutput{};
+        terminals.clear();
         building = input.id;
         buildingKey = combineKey(combineKey(settings.seed, building), 0xb01d1e5ull);
         params = input.parameters.data();
@@ -455,12 +456,15 @@ struct BuildingExpander::Impl {
         output.atoms = atomCount;
         output.footprint.reserve(atomCount);
         for (const glm::dvec2& p : clean.points) output.footprint.emplace_back(p);
-        terminals.clear();
         for (atom = 0; atom < atomCount; ++atom) {
             const glm::dvec2 a = clean.points[atom], b = clean.points[(atom + 1) % atomCount];
             expandAtom(glm::vec3(glm::vec2(a), baseZ), glm::vec3(glm::vec2(b), baseZ));
         }
-        output.terminals.assign(terminals.begin(), terminals.end());
+        if (arena) {
+            output.arenaTerminals = arena->append(terminals);
+        } else {
+            output.terminals.assign(terminals.begin(), terminals.end());
+        }
     }
 };
 
@@ -471,7 +475,22 @@ BuildingExpander::~BuildingExpander() {
 }
 
 void BuildingExpander::expand(const BuildingInput& building, BuildingOutput& out) {
-    impl_->expand(building, out);
+    impl_->expand(building, out, nullptr);
+}
+
+void BuildingExpander::expand(const BuildingInput& building, BuildingOutput& out, TerminalArena& arena) {
+    impl_->expand(building, out, &arena);
+}
+
+std::span<const TerminalRecord> TerminalArena::append(std::span<const TerminalRecord> records) {
+    if (records.empty()) return {};
+    if (blocks_.empty() || blocks_.back().capacity() - blocks_.back().size() < records.size()) {
+        blocks_.emplace_back().reserve(std::max(kBlockRecords, records.size()));
+    }
+    TerminalBuffer& block = blocks_.back();
+    const size_t first = block.size();
+    block.insert(block.end(), records.begin(), records.end()); // within capacity: no reallocation
+    return {block.data() + first, records.size()};
 }
 
 } // namespace hexlod::grammar

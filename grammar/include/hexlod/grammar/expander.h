@@ -3,11 +3,14 @@
 // turn runaway grammars into diagnostics instead of hangs.
 #pragma once
 
+#include "hexlod/grammar/bulk_allocator.h"
 #include "hexlod/grammar/compiled_grammar.h"
 #include "hexlod/grammar/extruded_set.h"
 #include "hexlod/grammar/terminal_set.h"
 
 #include <glm/glm.hpp>
+
+#include <span>
 
 #include <string>
 #include <vector>
@@ -61,9 +64,24 @@ struct ExpansionIssue {
     std::string detail;
 };
 
+using TerminalBuffer = std::vector<TerminalRecord, BulkAllocator<TerminalRecord>>;
+
+// Where a batch worker keeps the terminals of its buildings: fixed blocks that are never
+// reallocated, so a building's span stays valid and no record is copied twice. Growing one
+// buffer instead re-copied hundreds of megabytes and faulted in fresh pages at each step.
+class TerminalArena {
+public:
+    static constexpr size_t kBlockRecords = size_t(1) << 17; // 4 MiB, the bulk threshold
+    std::span<const TerminalRecord> append(std::span<const TerminalRecord> records);
+
+private:
+    std::vector<TerminalBuffer> blocks_;
+};
+
 struct BuildingOutput {
-    std::vector<TerminalRecord> terminals; // in derivation order
-    std::vector<glm::vec2> footprint;      // cleaned, cell-local
+    std::vector<TerminalRecord> terminals;          // in derivation order, from expand(building, out)
+    std::span<const TerminalRecord> arenaTerminals; // from expand(building, out, arena)
+    std::vector<glm::vec2> footprint;               // cleaned, cell-local
     std::vector<ExtrudedElement> elements;
     std::vector<ExpansionIssue> issues;
     float baseElevation = 0.0f;
@@ -81,6 +99,9 @@ public:
     BuildingExpander& operator=(const BuildingExpander&) = delete;
 
     void expand(const BuildingInput& building, BuildingOutput& out);
+    // Appends the terminals to `arena` instead of a vector of their own: the batch path,
+    // which saves an allocation per building.
+    void expand(const BuildingInput& building, BuildingOutput& out, TerminalArena& arena);
 
 private:
     struct Impl;

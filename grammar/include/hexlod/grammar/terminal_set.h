@@ -2,7 +2,7 @@
 // (thesis §4.4: the compact output that stands for full facade geometry).
 #pragma once
 
-#include "hexlod/grammar/default_init_allocator.h"
+#include "hexlod/grammar/bulk_allocator.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -65,7 +65,7 @@ static_assert(sizeof(TerminalSetHeader) == 56);
 struct TerminalSet {
     TerminalSetHeader header;
     std::vector<uint32_t> countPerShape;
-    std::vector<TerminalRecord, DefaultInitAllocator<TerminalRecord>> records;
+    std::vector<TerminalRecord, BulkAllocator<TerminalRecord>> records;
 
     size_t byteSize() const {
         return sizeof(TerminalSetHeader) + countPerShape.size() * sizeof(uint32_t) +
