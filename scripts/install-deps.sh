@@ -7,6 +7,7 @@ packages=(
     cmake ninja-build g++ pkg-config
     libglm-dev libtbb-dev libzstd-dev
     nlohmann-json3-dev libcli11-dev libspdlog-dev
+    libosmium2-dev libprotozero-dev zlib1g-dev libbz2-dev libexpat1-dev
     googletest libgtest-dev libbenchmark-dev
     clang-14 libclang-rt-14-dev clang-format
 )
