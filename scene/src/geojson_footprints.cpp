@@ -13,10 +13,6 @@ namespace {
 using Json = nlohmann::json;
 using Ring = std::vector<glm::dvec2>; // lon, lat
 
-constexpr double kSemiMajor = 6378137.0;            // WGS84 a
-constexpr double kEccentricity2 = 6.69437999014e-3; // WGS84 e^2
-constexpr double kPi = 3.14159265358979323846;
-
 // Reads one linear ring; returns a reason when it cannot be used.
 const char* readRing(const Json& ring, Ring& out) {
     if (!ring.is_array()) return "ring is not an array";
@@ -99,6 +95,7 @@ public:
             for (const glm::dvec2& q : p.outer) b.footprint.push_back(projection.project(q.x, q.y));
             out_.buildings.push_back(std::move(b));
             out_.heights.push_back(p.height);
+            out_.levels.push_back(std::numeric_limits<double>::quiet_NaN()); // only `height` is read
         }
     }
 
@@ -118,20 +115,6 @@ private:
 };
 
 } // namespace
-
-LocalProjection LocalProjection::about(double lon0, double lat0) {
-    const double phi = lat0 * kPi / 180.0;
-    const double s = std::sin(phi);
-    const double w = 1.0 - kEccentricity2 * s * s;
-    const double primeVertical = kSemiMajor / std::sqrt(w);
-    const double meridional = kSemiMajor * (1.0 - kEccentricity2) / (w * std::sqrt(w));
-    LocalProjection p;
-    p.lon0 = lon0;
-    p.lat0 = lat0;
-    p.metresPerDegreeLon = primeVertical * std::cos(phi) * kPi / 180.0;
-    p.metresPerDegreeLat = meridional * kPi / 180.0;
-    return p;
-}
 
 bool parseGeoJsonFootprints(std::string_view text, ImportedFootprints& out, std::string& error) {
     out = ImportedFootprints{};
