@@ -16,22 +16,22 @@ namespace hexlod::scene {
 
 // A district type: which grammar its buildings use and how tall they grow.
 struct DistrictSpec {
-    std::string grammar;        // grammar name in the scene config
-    double share = 1.0;         // relative share of the city's area
-    double minFloors = 2.0;     // the `floors` parameter is drawn in [minFloors, maxFloors]
+    std::string grammar;    // grammar name in the scene config
+    double share = 1.0;     // relative share of the city's area
+    double minFloors = 2.0; // the `floors` parameter is drawn in [minFloors, maxFloors]
     double maxFloors = 6.0;
-    double lotWidth = 20.0;     // typical lot frontage, metres
-    double lotDepth = 25.0;     // typical lot depth, metres
+    double lotWidth = 20.0; // typical lot frontage, metres
+    double lotDepth = 25.0; // typical lot depth, metres
 };
 
 struct CityOptions {
     uint64_t seed = 1;
-    uint32_t buildings = 10000;  // exactly this many footprints are generated
-    uint32_t trees = 0;          // exactly this many trees (0: none)
-    uint32_t species = 7;        // trees are spread over species 0..species-1
-    double blockSize = 120.0;    // mean distance between streets, metres
+    uint32_t buildings = 10000; // exactly this many footprints are generated
+    uint32_t trees = 0;         // exactly this many trees (0: none)
+    uint32_t species = 7;       // trees are spread over species 0..species-1
+    double blockSize = 120.0;   // mean distance between streets, metres
     double streetWidth = 14.0;
-    double parkShare = 0.06;     // share of blocks kept as parks (trees, no buildings)
+    double parkShare = 0.06;             // share of blocks kept as parks (trees, no buildings)
     std::vector<DistrictSpec> districts; // ordered from the centre outwards; must not be empty
 };
 
