@@ -9,6 +9,7 @@
 namespace hexlod::apps {
 
 struct ExpandOptions {
+    std::string scenePath;
     std::string grammarPath;
     std::string footprintsPath;
     uint32_t demoCount = 0;

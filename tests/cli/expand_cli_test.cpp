@@ -108,3 +108,43 @@ TEST(Cli, UnwritableOutIsAnError) {
 
 } // namespace
 } // namespace hexlod::test
+
+namespace hexlod::test {
+namespace {
+
+TEST(Cli, ExpandSceneReportsEveryBatchAndWhatItLeftOut) {
+    const std::string path = ::testing::TempDir() + "small-scene.json";
+    std::ofstream(path) << R"({
+      "grammars": { "business": { "file": ")" HEXLOD_CONFIGS_DIR R"(/grammars/business.grammar" },
+                    "residential": { "file": ")" HEXLOD_CONFIGS_DIR R"(/grammars/residential.grammar" } },
+      "buildings": [ { "source": "procedural", "count": 400, "districts": [
+          { "grammar": "business", "share": 0.5, "floors": [10, 30] }, { "grammar": "residential" } ] } ] })";
+    const CommandResult r = runHexlod("expand --scene " + path + " --threads 2 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["buildings"], 400);
+    EXPECT_EQ(j["trees"], 0);
+    EXPECT_EQ(j["batches"].size(), 2u);
+    uint64_t terminals = 0;
+    for (const auto& batch : j["batches"]) terminals += batch["terminals"].get<uint64_t>();
+    EXPECT_EQ(j["terminals"].get<uint64_t>(), terminals);
+    EXPECT_GT(terminals, 400u * 100u);
+    EXPECT_NE(r.err.find("vegetation: off (no trees)"), std::string::npos) << r.err;
+    std::remove(path.c_str());
+}
+
+TEST(Cli, BadSceneConfigNamesTheField) {
+    const std::string path = ::testing::TempDir() + "bad-scene.json";
+    std::ofstream(path)
+        << R"({"grammars": {"a": {"file": "x.grammar"}}, "buildings": [], "lod": {"hysteresis": 7}})";
+    const CommandResult r = runHexlod("expand --scene " + path);
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("lod.hysteresis: must be a finite number in [0, 1], got 7"), std::string::npos)
+        << r.err;
+    const CommandResult both = runHexlod("expand --scene " + path + " --demo 3");
+    EXPECT_NE(both.exitCode, 0);
+    std::remove(path.c_str());
+}
+
+} // namespace
+} // namespace hexlod::test
