@@ -1,6 +1,7 @@
 #include "hexlod/scene/scene_builder.h"
 
 #include "hexlod/scene/building_floors.h"
+#include "hexlod/scene/demo_footprints.h"
 #include "hexlod/scene/geojson_footprints.h"
 #include "hexlod/scene/osm_footprints.h"
 
@@ -124,8 +125,13 @@ private:
         const int g = config_.findGrammar(source.grammar);
         for (size_t i = 0; i < imported.buildings.size(); ++i) {
             const double levels = i < imported.levels.size() ? imported.levels[i] : NAN;
-            const double floors =
-                floorsFromImport(out_.buildingGrammars[g].grammar, imported.heights[i], levels);
+            const grammar::CompiledGrammar& compiled = out_.buildingGrammars[g].grammar;
+            double floors = floorsFromImport(compiled, imported.heights[i], levels);
+            if (!std::isfinite(floors)) {
+                // No height in the data: the scene's default storeys, varied by seed and building.
+                const auto seeded = demoParameterOverrides(compiled, config_.seed, imported.buildings[i].id);
+                if (!seeded.empty()) floors = seeded.front().value;
+            }
             addBuilding(index, imported.buildings[i].id, g, std::move(imported.buildings[i]), floors,
                         overrides);
         }

@@ -107,6 +107,12 @@ TEST(SceneBuilder, ImportedSourcesKeepTheirFeatures) {
     std::string error;
     ASSERT_TRUE(buildScene(parse(text), scene, error)) << error;
     EXPECT_GE(scene.buildingCount(), 3754u + 23327u);
+    // Monaco has no heights: storeys come from the seeded default range, not one value for all.
+    const GrammarBuildings& res = scene.buildingGrammars[0];
+    const int floors = res.grammar.findParameter("floors");
+    std::set<float> storeys;
+    for (const grammar::BuildingInput& b : res.buildings) storeys.insert(b.parameters[floors]);
+    EXPECT_GE(storeys.size(), 3u);
     ASSERT_EQ(scene.attributions.size(), 1u);
     EXPECT_EQ(scene.attributions[0], "© OpenStreetMap contributors");
     const std::string missing = R"({"grammars": { "res": { "file": "grammars/residential.grammar" } },
