@@ -1,5 +1,7 @@
 #include "city_lots.h"
 
+#include "footprint_shapes.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -7,7 +9,6 @@ namespace hexlod::scene::detail {
 namespace {
 
 using grammar::combineKey;
-using Polygon = std::vector<glm::dvec2>;
 
 constexpr uint64_t kDepthTag = 0xde97ull;
 
@@ -22,27 +23,6 @@ template <typename Emit> void cutStrip(double length, double lotWidth, uint64_t 
         emit(start, end);
         start = end;
     }
-}
-
-// Shapes below live in [0, w] x [0, d] with v = 0 on the street side, counter-clockwise.
-Polygon box(double w, double d) {
-    return {{0, 0}, {w, 0}, {w, d}, {0, d}};
-}
-
-Polygon lShape(double w, double d, double wing) {
-    return {{0, 0}, {w, 0}, {w, wing}, {wing, wing}, {wing, d}, {0, d}};
-}
-
-// Open towards the back of the lot, away from the street.
-Polygon uShape(double w, double d, double wing) {
-    return {{0, 0}, {w, 0}, {w, d}, {w - wing, d}, {w - wing, wing}, {wing, wing}, {wing, d}, {0, d}};
-}
-
-// The stem faces the street, the bar fills the back of the lot.
-Polygon tShape(double w, double d, double stem) {
-    const double a = 0.5 * (w - stem), bar = 0.4 * d;
-    return {{a, 0}, {a + stem, 0}, {a + stem, d - bar}, {w, d - bar},
-            {w, d}, {0, d},        {0, d - bar},        {a, d - bar}};
 }
 
 Polygon chamfered(double w, double d, double cut) {

@@ -1,5 +1,7 @@
 #include "hexlod/scene/demo_footprints.h"
 
+#include "footprint_shapes.h"
+
 #include "hexlod/grammar/position_hash.h"
 
 #include <algorithm>
@@ -18,25 +20,7 @@ struct Draws {
     float uniform(float lo, float hi) { return lo + (hi - lo) * unitFloat(combineKey(key, next++)); }
 };
 
-using Polygon = std::vector<glm::dvec2>;
-
-Polygon box(double w, double d) {
-    return {{0, 0}, {w, 0}, {w, d}, {0, d}};
-}
-
-Polygon lShape(double w, double d, double wing) {
-    return {{0, 0}, {w, 0}, {w, wing}, {wing, wing}, {wing, d}, {0, d}};
-}
-
-Polygon uShape(double w, double d, double wing) {
-    return {{0, 0}, {w, 0}, {w, d}, {w - wing, d}, {w - wing, wing}, {wing, wing}, {wing, d}, {0, d}};
-}
-
-Polygon tShape(double w, double d, double stem) {
-    const double a = 0.5 * (w - stem), bar = 0.4 * d;
-    return {{a, 0}, {a + stem, 0}, {a + stem, d - bar}, {w, d - bar},
-            {w, d}, {0, d},        {0, d - bar},        {a, d - bar}};
-}
+using detail::Polygon;
 
 Polygon regular(double radius, int sides) {
     Polygon p;
@@ -64,20 +48,20 @@ std::vector<grammar::BuildingInput> makeDemoFootprints(const DemoOptions& option
         double angle = 0.0;
         switch (demoShapeOf(options.seed, id)) {
         case DemoShape::Rectangle:
-            polygon = box(w, d);
+            polygon = detail::box(w, d);
             break;
         case DemoShape::RotatedRectangle:
-            polygon = box(w, d);
+            polygon = detail::box(w, d);
             angle = draw.uniform(-0.6f, 0.6f);
             break;
         case DemoShape::LShape:
-            polygon = lShape(w, d, draw.uniform(0.35f, 0.6f) * std::min(w, d));
+            polygon = detail::lShape(w, d, draw.uniform(0.35f, 0.6f) * std::min(w, d));
             break;
         case DemoShape::UShape:
-            polygon = uShape(w, d, draw.uniform(0.25f, 0.33f) * std::min(w, d));
+            polygon = detail::uShape(w, d, draw.uniform(0.25f, 0.33f) * std::min(w, d));
             break;
         case DemoShape::TShape:
-            polygon = tShape(w, d, draw.uniform(0.3f, 0.5f) * w);
+            polygon = detail::tShape(w, d, draw.uniform(0.3f, 0.5f) * w);
             break;
         case DemoShape::Polygon:
             polygon = regular(0.5 * std::min(w, d), 5 + static_cast<int>(draw.uniform(0.0f, 4.0f)));

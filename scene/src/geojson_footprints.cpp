@@ -47,11 +47,6 @@ double heightOf(const Json& properties) {
     return std::isfinite(value) && value > 0.0 && value < 2000.0 ? value : unknown;
 }
 
-struct PendingFootprint {
-    Ring outer;
-    double height;
-};
-
 class Reader {
 public:
     explicit Reader(ImportedFootprints& out) : out_(out) {}
@@ -79,25 +74,7 @@ public:
         skip("geometry is not a Polygon or MultiPolygon");
     }
 
-    void finish() {
-        if (pending_.empty()) return;
-        glm::dvec2 lo(1e9), hi(-1e9);
-        for (const PendingFootprint& p : pending_) {
-            for (const glm::dvec2& q : p.outer) lo = glm::min(lo, q), hi = glm::max(hi, q);
-        }
-        const glm::dvec2 centre = 0.5 * (lo + hi);
-        const LocalProjection projection = LocalProjection::about(centre.x, centre.y);
-        out_.originLon = centre.x;
-        out_.originLat = centre.y;
-        for (const PendingFootprint& p : pending_) {
-            grammar::BuildingInput b;
-            b.id = static_cast<uint32_t>(out_.buildings.size());
-            for (const glm::dvec2& q : p.outer) b.footprint.push_back(projection.project(q.x, q.y));
-            out_.buildings.push_back(std::move(b));
-            out_.heights.push_back(p.height);
-            out_.levels.push_back(std::numeric_limits<double>::quiet_NaN()); // only `height` is read
-        }
-    }
+    void finish() { appendProjected(pending_, out_); }
 
 private:
     void skip(const std::string& reason) { ++out_.skipped[reason]; }
@@ -111,7 +88,7 @@ private:
     }
 
     ImportedFootprints& out_;
-    std::vector<PendingFootprint> pending_;
+    std::vector<LonLatFootprint> pending_;
 };
 
 } // namespace

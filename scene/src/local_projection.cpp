@@ -25,4 +25,24 @@ LocalProjection LocalProjection::about(double lon0, double lat0) {
     return p;
 }
 
+void appendProjected(const std::vector<LonLatFootprint>& footprints, ImportedFootprints& out) {
+    if (footprints.empty()) return;
+    glm::dvec2 lo(1e9), hi(-1e9);
+    for (const LonLatFootprint& f : footprints) {
+        for (const glm::dvec2& q : f.outer) lo = glm::min(lo, q), hi = glm::max(hi, q);
+    }
+    const glm::dvec2 centre = 0.5 * (lo + hi);
+    const LocalProjection projection = LocalProjection::about(centre.x, centre.y);
+    out.originLon = centre.x;
+    out.originLat = centre.y;
+    for (const LonLatFootprint& f : footprints) {
+        grammar::BuildingInput b;
+        b.id = static_cast<uint32_t>(out.buildings.size());
+        for (const glm::dvec2& q : f.outer) b.footprint.push_back(projection.project(q.x, q.y));
+        out.buildings.push_back(std::move(b));
+        out.heights.push_back(f.height);
+        out.levels.push_back(f.levels);
+    }
+}
+
 } // namespace hexlod::scene

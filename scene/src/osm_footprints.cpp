@@ -113,11 +113,6 @@ const char* readRing(const osmium::NodeRefList& ring, Ring& out) {
     return nullptr;
 }
 
-struct PendingFootprint {
-    Ring outer;
-    double height, levels;
-};
-
 // Second-pass handler, after the node locations: builds closed building ways itself, so that
 // every one it drops is counted with a reason (the multipolygon manager drops unclosed ways
 // and missing nodes silently), and receives the manager's relation areas in area().
@@ -182,25 +177,7 @@ public:
         if (unexplained > 0) out_.skipped["multipolygon not assembled"] += unexplained;
     }
 
-    void finish() {
-        if (pending_.empty()) return;
-        glm::dvec2 lo(1e9), hi(-1e9);
-        for (const PendingFootprint& p : pending_) {
-            for (const glm::dvec2& q : p.outer) lo = glm::min(lo, q), hi = glm::max(hi, q);
-        }
-        const glm::dvec2 centre = 0.5 * (lo + hi);
-        const LocalProjection projection = LocalProjection::about(centre.x, centre.y);
-        out_.originLon = centre.x;
-        out_.originLat = centre.y;
-        for (const PendingFootprint& p : pending_) {
-            grammar::BuildingInput b;
-            b.id = static_cast<uint32_t>(out_.buildings.size());
-            for (const glm::dvec2& q : p.outer) b.footprint.push_back(projection.project(q.x, q.y));
-            out_.buildings.push_back(std::move(b));
-            out_.heights.push_back(p.height);
-            out_.levels.push_back(p.levels);
-        }
-    }
+    void finish() { appendProjected(pending_, out_); }
 
 private:
     void skip(const std::string& reason) { ++out_.skipped[reason]; }
@@ -220,7 +197,7 @@ private:
     FirstProblem& problems_;
     const osmium::area::AssemblerConfig config_;
     osmium::memory::Buffer buffer_{4096, osmium::memory::Buffer::auto_grow::yes};
-    std::vector<PendingFootprint> pending_;
+    std::vector<LonLatFootprint> pending_;
     size_t relationAreas_ = 0;
 };
 

@@ -4,6 +4,7 @@
 
 #include "hexlod/grammar/expander.h"
 
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,5 +35,16 @@ struct LocalProjection {
         return {(lon - lon0) * metresPerDegreeLon, (lat - lat0) * metresPerDegreeLat};
     }
 };
+
+// A footprint as an importer reads it: its outer ring in lon/lat, before projection.
+struct LonLatFootprint {
+    std::vector<glm::dvec2> outer;
+    double height = std::numeric_limits<double>::quiet_NaN();
+    double levels = std::numeric_limits<double>::quiet_NaN();
+};
+
+// Projects `footprints` about the centre of their bounding box and appends them to `out` as
+// buildings with ids in order, with their heights and levels; sets out's origin.
+void appendProjected(const std::vector<LonLatFootprint>& footprints, ImportedFootprints& out);
 
 } // namespace hexlod::scene
