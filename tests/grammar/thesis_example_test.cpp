@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace hexlod::grammar {
 namespace {
 
@@ -152,6 +154,34 @@ TEST(ThesisExample, BatchRecordsAreSortedByShapeWithCounts) {
     ASSERT_EQ(r.extruded.buildings.size(), 3u);
     EXPECT_EQ(r.extruded.buildings[2].vertexCount, 4u);
     EXPECT_EQ(r.extruded.parameters.size(), 3 * g.params.size());
+}
+
+} // namespace
+} // namespace hexlod::grammar
+
+namespace hexlod::grammar {
+namespace {
+
+// World coordinates stay double until they are made relative to the batch's cell origin, so a
+// city 1e7 m from the origin expands to the same cell-local terminals as one at the origin.
+TEST(ThesisExample, ExactTenThousandKilometresFromTheOrigin) {
+    const CompiledGrammar g = thesisGrammar();
+    const glm::dvec2 far(1e7, -1e7);
+    ExpansionSettings nearSettings, farSettings;
+    nearSettings.seed = farSettings.seed = 1;
+    nearSettings.cellOrigin = glm::dvec3(100.0, 50.0, 0.0);
+    farSettings.cellOrigin = glm::dvec3(far + glm::dvec2(100.0, 50.0), 0.0);
+    const test::Expansion nearby = expandOne(g, rectangle(20, 12, {80.0, 40.0}), {}, 0, nearSettings);
+    const test::Expansion distant =
+        expandOne(g, rectangle(20, 12, far + glm::dvec2(80.0, 40.0)), {}, 0, farSettings);
+    ASSERT_EQ(nearby.terminals.size(), 448u);
+    ASSERT_EQ(distant.terminals.size(), nearby.terminals.size());
+    float worst = 0.0f;
+    for (size_t i = 0; i < nearby.terminals.size(); ++i) {
+        worst = std::max(worst, glm::length(nearby.terminals[i].position - distant.terminals[i].position));
+        EXPECT_EQ(nearby.terminals[i].shape, distant.terminals[i].shape);
+    }
+    EXPECT_LT(worst, 1e-3f); // within 1 mm
 }
 
 } // namespace
