@@ -1,6 +1,8 @@
 // hexlod: streams massive procedural cities with level of detail. Each subcommand lives in
 // its own file and registers itself here.
+#include "cells_command.h"
 #include "expand_command.h"
+#include "import_command.h"
 
 #include <CLI/CLI.hpp>
 
@@ -12,11 +14,17 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "hexlod 0.1.0");
     hexlod::apps::ExpandOptions expand;
     CLI::App* expandCommand = hexlod::apps::registerExpandCommand(app, expand);
+    hexlod::apps::ImportOptions import;
+    CLI::App* importCommand = hexlod::apps::registerImportCommand(app, import);
+    hexlod::apps::CellsOptions cells;
+    CLI::App* cellsCommand = hexlod::apps::registerCellsCommand(app, cells);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e, std::cout, std::cerr);
     }
     if (expandCommand->parsed()) return hexlod::apps::runExpandCommand(expand);
+    if (importCommand->parsed()) return hexlod::apps::runImportCommand(import);
+    if (cellsCommand->parsed()) return hexlod::apps::runCellsCommand(cells);
     return 0;
 }
