@@ -1,5 +1,7 @@
 #include "cells_command.h"
 
+#include "cell_generation.h"
+
 #include "hexlod/cells/cell_index.h"
 #include "hexlod/scene/scene_builder.h"
 
@@ -104,6 +106,20 @@ void printStats(const nlohmann::json& s) {
     std::printf("time         %.3f s (scene %.3f s, index %.3f s), peak RSS %.1f MB\n",
                 s["seconds"].get<double>(), s["scene_seconds"].get<double>(),
                 s["index_seconds"].get<double>(), s["peak_rss_bytes"].get<double>() / 1e6);
+    if (!s.contains("generation")) return;
+    const nlohmann::json& g = s["generation"];
+    auto line = [&](const char* label, const char* key, double scale, const char* unit) {
+        const nlohmann::json& v = g[key];
+        std::printf("%-13s median %.2f, p95 %.2f, max %.2f %s\n", label, v["median"].get<double>() * scale,
+                    v["p95"].get<double>() * scale, v["max"].get<double>() * scale, unit);
+    };
+    std::printf("generated    %llu cells\n", g["cells_generated"].get<unsigned long long>());
+    line("time/cell", "milliseconds_per_cell", 1.0, "ms");
+    line("bytes/cell", "bytes_per_cell", 1e-6, "MB in memory");
+    line("encoded/cell", "encoded_bytes_per_cell", 1e-6, "MB encoded");
+    line("terminals", "terminals_per_cell", 1e-3, "thousand per cell");
+    line("  buildings", "building_bytes_per_cell", 1e-6, "MB in memory");
+    line("  buildings", "building_encoded_bytes_per_cell", 1e-6, "MB encoded");
 }
 
 } // namespace
@@ -114,6 +130,9 @@ CLI::App* registerCellsCommand(CLI::App& app, CellsOptions& o) {
     cmd->add_option("--scene", o.scenePath, "Scene config (docs/scene.md)")->required();
     cmd->add_flag("--stats", o.stats, "Print a summary instead of one line per cell");
     cmd->add_flag("--json", o.json, "Print the summary as one JSON object");
+    cmd->add_flag("--generate", o.generate, "Also expand the cells' batches: time and bytes per cell");
+    cmd->add_option("--cells", o.maxCells, "With --generate: at most N cells, evenly spread (default: all)")
+        ->check(CLI::Range(1u, 100000000u));
     return cmd;
 }
 
@@ -144,7 +163,7 @@ int runCellsCommand(const CellsOptions& options) {
     const Clock::time_point end = Clock::now();
 
     const std::vector<uint32_t> perCell = buildingsPerCell(*index);
-    const nlohmann::json summary = {
+    nlohmann::json summary = {
         {"scene", config.name},
         {"buildings", index->buildingCount()},
         {"trees", index->treeCount()},
@@ -158,6 +177,7 @@ int runCellsCommand(const CellsOptions& options) {
         {"index_seconds", std::chrono::duration<double>(end - indexStart).count()},
         {"peak_rss_bytes", peakRssBytes()},
     };
+    if (options.generate) summary["generation"] = generateCells(built, *index, options.maxCells);
     if (options.json) {
         std::cout << summary.dump(2) << "\n";
     } else {

@@ -12,6 +12,8 @@ struct CellsOptions {
     std::string scenePath;
     bool stats = false;
     bool json = false;
+    bool generate = false;
+    uint32_t maxCells = 0; // with generate: 0 means every cell
 };
 
 CLI::App* registerCellsCommand(CLI::App& app, CellsOptions& options);

@@ -160,3 +160,29 @@ TEST(ImportCli, BadInputsFailWithMessages) {
 
 } // namespace
 } // namespace hexlod::test
+
+namespace hexlod::test {
+namespace {
+
+TEST(CellsCli, GenerateReportsTimeAndBytesPerCell) {
+    const CommandResult r = runHexlod("cells --scene " + std::string(HEXLOD_CONFIGS_DIR) +
+                                      "/default.json --generate --cells 3 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const nlohmann::json& g = j.at("generation");
+    EXPECT_EQ(g["cells_generated"], 3);
+    for (const char* key :
+         {"milliseconds_per_cell", "bytes_per_cell", "encoded_bytes_per_cell", "terminals_per_cell",
+          "building_bytes_per_cell", "building_encoded_bytes_per_cell"}) {
+        const nlohmann::json& v = g.at(key);
+        EXPECT_LE(v["median"].get<double>(), v["p95"].get<double>()) << key;
+        EXPECT_LE(v["p95"].get<double>(), v["max"].get<double>()) << key;
+    }
+    // Records are 32 bytes and the codec packs them several times smaller.
+    EXPECT_GT(g["bytes_per_cell"]["max"].get<double>(),
+              32.0 * g["terminals_per_cell"]["max"].get<double>() - 1.0);
+    EXPECT_LT(g["encoded_bytes_per_cell"]["max"].get<double>(), g["bytes_per_cell"]["max"].get<double>());
+}
+
+} // namespace
+} // namespace hexlod::test
