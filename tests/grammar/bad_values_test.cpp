@@ -27,8 +27,12 @@ using hexlod::test::rectangle;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Runs `body` and returns its wall time in seconds; the caps exist to make runaway
-// grammars cheap, so the tests hold them to "well under a second".
+// Runs `body` and returns its wall time in seconds.
+// Caps must turn runaway grammars into diagnostics, never hangs. The bound only tells a hang
+// from slow work; it is far above the milliseconds these take, so sanitizers and a loaded
+// machine do not make it flaky (speed itself is measured in benchmarks, not here).
+constexpr double kNotAHangSeconds = 30.0;
+
 template <typename Body> double secondsFor(Body&& body) {
     const auto start = std::chrono::steady_clock::now();
     body();
@@ -291,7 +295,7 @@ TEST(BadRepeatTest, TooManyTilesDropTheScopeWithoutWork) {
     Expansion e;
     // Each 10 m edge would take 1e7 tiles of 1 um, above the default 8,388,608 rule applications.
     const double seconds = secondsFor([&] { e = expandOne(g, rectangle(10, 10)); });
-    EXPECT_LT(seconds, 0.5);
+    EXPECT_LT(seconds, kNotAHangSeconds);
     EXPECT_TRUE(e.terminals.empty());
     ASSERT_EQ(e.output.issues.size(), 1u) << describeAll(g, e.output);
     EXPECT_EQ(e.output.issues[0].kind, IssueKind::TooManyTiles);
@@ -397,7 +401,7 @@ TEST(ExpansionCapTest, CondGuardedRecursionThatNeverStopsHitsTheDepthCap) {
                                             "B -> Translate(0, 0, 0) { A };\n",
                                             "depth.grammar");
     Expansion e;
-    EXPECT_LT(secondsFor([&] { e = expandOne(g, rectangle(10, 8)); }), 0.5);
+    EXPECT_LT(secondsFor([&] { e = expandOne(g, rectangle(10, 8)); }), kNotAHangSeconds);
     ASSERT_EQ(e.output.issues.size(), 1u) << describeAll(g, e.output);
     const ExpansionIssue& issue = e.output.issues[0];
     EXPECT_EQ(issue.kind, IssueKind::DepthCap);
@@ -437,7 +441,7 @@ TEST(ExpansionCapTest, BranchExplosionHitsTheOperationCapQuickly) {
     ExpansionSettings settings;
     settings.limits.maxOperationsPerAtom = 10000;
     Expansion e;
-    EXPECT_LT(secondsFor([&] { e = expandOne(g, rectangle(10, 8), {}, 3, settings); }), 0.5);
+    EXPECT_LT(secondsFor([&] { e = expandOne(g, rectangle(10, 8), {}, 3, settings); }), kNotAHangSeconds);
     // Every atom runs into the cap, so every atom is dropped whole; reported once.
     EXPECT_TRUE(e.terminals.empty());
     EXPECT_EQ(e.output.atoms, 4u);
@@ -465,7 +469,7 @@ TEST(ExpansionCapTest, AtomTerminalCapDropsOnlyThatAtomsTerminals) {
     ExpansionSettings settings;
     settings.limits.maxTerminalsPerAtom = 100;
     Expansion e;
-    EXPECT_LT(secondsFor([&] { e = expandOne(g, rectangle(100, 1), {}, 0, settings); }), 0.5);
+    EXPECT_LT(secondsFor([&] { e = expandOne(g, rectangle(100, 1), {}, 0, settings); }), kNotAHangSeconds);
     ASSERT_EQ(e.output.issues.size(), 1u) << describeAll(g, e.output);
     EXPECT_EQ(e.output.issues[0].kind, IssueKind::AtomTerminalCap);
     EXPECT_EQ(ruleOf(g, e.output.issues[0]), "Tile");
@@ -501,7 +505,7 @@ TEST(ExpansionCapTest, BatchTerminalCapFailsTheWholeBatch) {
     // ...one below it and nothing is generated.
     input.settings.limits.maxTerminalsPerBatch = 11;
     BatchResult capped;
-    EXPECT_LT(secondsFor([&] { capped = expandBatch(input); }), 0.5);
+    EXPECT_LT(secondsFor([&] { capped = expandBatch(input); }), kNotAHangSeconds);
     EXPECT_TRUE(capped.failed);
     EXPECT_TRUE(capped.terminals.records.empty());
     EXPECT_TRUE(capped.extruded.buildings.empty());
