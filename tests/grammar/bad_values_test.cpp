@@ -27,12 +27,12 @@ using hexlod::test::rectangle;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Runs `body` and returns its wall time in seconds.
 // Caps must turn runaway grammars into diagnostics, never hangs. The bound only tells a hang
 // from slow work; it is far above the milliseconds these take, so sanitizers and a loaded
 // machine do not make it flaky (speed itself is measured in benchmarks, not here).
 constexpr double kNotAHangSeconds = 30.0;
 
+// Runs `body` and returns its wall time in seconds.
 template <typename Body> double secondsFor(Body&& body) {
     const auto start = std::chrono::steady_clock::now();
     body();
