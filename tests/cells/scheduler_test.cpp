@@ -1,0 +1,319 @@
+// Scheduler decisions for scripted cameras on a small procedural city: which cells are seen,
+// at which LOD, in which order their batches are generated, that the hysteresis holds, that
+// prefetch runs ahead of a moving camera, that a worker pool never blocks update(), and that
+// the cache keeps its byte budget over a walk.
+#include "hexlod/cells/scheduler.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace hexlod::cells {
+
+scene::BuiltScene smallCity(); // batch_catalog_test.cpp
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Default profile: geometric error 4 m at 1080 pixels and fovY 1 rad switches to Terminals
+// closer than about 1,647 m and back beyond about 2,471 m.
+SchedulerOptions options(uint32_t maxBatches, double prefetchSeconds = 0.0, uint32_t workers = 0) {
+    SchedulerOptions o;
+    o.maxBatchesPerFrame = maxBatches;
+    o.prefetchSeconds = prefetchSeconds;
+    o.workers = workers;
+    return o;
+}
+
+double switchUpDistance(const SchedulerOptions& o, const Camera& c) {
+    return o.lod.geometricError[1] * c.viewportHeight /
+           (2.0 * std::tan(c.fovY * 0.5) * o.lod.maxScreenSpaceError * (1.0 + o.lod.hysteresis));
+}
+
+class SchedulerTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { scene_ = new scene::BuiltScene(smallCity()); }
+    static void TearDownTestSuite() { delete scene_; }
+
+    // A camera `d` metres south of `target`'s bounds box, level with its middle, looking north.
+    Camera southOf(const CellBounds& target, double d) const {
+        Camera c;
+        c.position = {(target.lo.x + target.hi.x) * 0.5, target.lo.y - d, (target.zMin + target.zMax) * 0.5};
+        c.forward = {0.0, 1.0, 0.0};
+        return c;
+    }
+    // The occupied cell nearest the city's middle: the approach target.
+    const CellBounds& middleCell() const {
+        const auto cells = catalog_.index().cells();
+        glm::dvec2 mean(0.0);
+        for (const CellBounds& c : cells) mean += catalog_.index().grid().center(c.cell);
+        mean /= static_cast<double>(cells.size());
+        return *std::min_element(cells.begin(), cells.end(), [&](const CellBounds& a, const CellBounds& b) {
+            return glm::distance(catalog_.index().grid().center(a.cell), mean) <
+                   glm::distance(catalog_.index().grid().center(b.cell), mean);
+        });
+    }
+    static const CellDecision* find(const FrameDecision& frame, HexCoord cell) {
+        for (const CellDecision& c : frame.cells)
+            if (c.cell == cell) return &c;
+        return nullptr;
+    }
+
+    static scene::BuiltScene* scene_;
+    BatchCatalog catalog_{*scene_};
+    cache::TerminalSetCache cache_{cache::CacheOptions{}};
+};
+scene::BuiltScene* SchedulerTest::scene_ = nullptr;
+
+TEST_F(SchedulerTest, AFarCameraSeesExtrudedCellsAndGeneratesNothing) {
+    Scheduler scheduler(catalog_, cache_, options(8, 2.0));
+    Camera camera = southOf(middleCell(), 6000.0);
+    for (int frame = 0; frame < 5; ++frame) {
+        const FrameDecision decision = scheduler.update(camera, frame * 0.1);
+        EXPECT_GT(decision.cells.size(), 5u);
+        for (const CellDecision& c : decision.cells) {
+            EXPECT_EQ(c.lod, CellLod::Extruded);
+            EXPECT_GT(c.distance, 5000.0);
+            EXPECT_LT(c.sse, 1.0);
+            EXPECT_TRUE(c.ready.empty() && c.requested.empty());
+        }
+        EXPECT_TRUE(decision.started.empty());
+        camera.position.y += 1.0; // slow: the prediction stays far too
+    }
+    EXPECT_EQ(cache_.stats().generations, 0u);
+    EXPECT_EQ(scheduler.generatedBatches(), 0u);
+}
+
+TEST_F(SchedulerTest, FlyingTowardACellSwitchesItAndGeneratesBySseWithinTheBudget) {
+    const SchedulerOptions o = options(3);
+    Scheduler scheduler(catalog_, cache_, o);
+    const CellBounds& target = middleCell();
+    Camera camera = southOf(target, 4000.0);
+    const double switchAt = switchUpDistance(o, camera);
+    bool switched = false;
+    size_t started = 0;
+    for (int frame = 0; frame < 60; ++frame) {
+        const FrameDecision decision = scheduler.update(camera, frame * 0.5);
+        const CellDecision* mine = find(decision, target.cell);
+        ASSERT_NE(mine, nullptr);
+        EXPECT_NEAR(mine->distance, std::max(4000.0 - 100.0 * frame, 0.0), 1e-6);
+        EXPECT_EQ(mine->lod == CellLod::Terminals, mine->distance < switchAt) << "frame " << frame;
+        switched = switched || mine->lod == CellLod::Terminals;
+
+        EXPECT_LE(decision.started.size(), 3u);
+        std::map<uint32_t, double> sseOf;
+        for (const CellDecision& c : decision.cells)
+            for (const uint32_t b : c.requested) sseOf[b] = c.sse;
+        for (const CellDecision& c : decision.cells)
+            for (const uint32_t b : c.ready) sseOf[b] = c.sse;
+        for (size_t i = 0; i < decision.started.size(); ++i) {
+            ASSERT_TRUE(sseOf.contains(decision.started[i])); // only visible Terminals cells
+            if (i > 0) {
+                EXPECT_GE(sseOf[decision.started[i - 1]], sseOf[decision.started[i]]);
+            }
+        }
+        // Unstarted requests never outrank a started one.
+        if (decision.started.size() == 3 && decision.requestedBatches > 0) {
+            for (const CellDecision& c : decision.cells)
+                for (const uint32_t b : c.requested) EXPECT_LE(sseOf[b], sseOf[decision.started.back()]);
+        }
+        started += decision.started.size();
+        if (frame < 40) camera.position.y += 100.0;
+    }
+    EXPECT_TRUE(switched);
+    EXPECT_GT(started, 3u);
+    EXPECT_EQ(cache_.stats().generations, started);
+    // Standing still for 20 frames finished every visible Terminals batch.
+    const FrameDecision last = scheduler.update(camera, 100.0);
+    EXPECT_TRUE(last.started.empty());
+    EXPECT_EQ(last.requestedBatches, 0u);
+    EXPECT_EQ(find(last, target.cell)->ready.size(), catalog_.index().batchesOf(target.cell).size());
+}
+
+TEST_F(SchedulerTest, HysteresisKeepsAHoveringCameraFromThrashing) {
+    const CellBounds& target = middleCell();
+    for (const double band : {0.2, 0.0}) {
+        SchedulerOptions o = options(1);
+        o.lod.hysteresis = band;
+        cache::TerminalSetCache cache{cache::CacheOptions{}};
+        Scheduler scheduler(catalog_, cache, o);
+        const double switchAt = switchUpDistance(o, southOf(target, 0.0));
+        int flips = 0;
+        CellLod previous = CellLod::Extruded;
+        for (int frame = 0; frame < 1000; ++frame) {
+            const double d = switchAt + (frame % 2 == 0 ? -5.0 : 5.0);
+            const FrameDecision decision = scheduler.update(southOf(target, d), frame / 60.0);
+            const CellLod now = find(decision, target.cell)->lod;
+            flips += now != previous;
+            previous = now;
+        }
+        if (band > 0.0) {
+            EXPECT_EQ(flips, 1);
+        } else {
+            EXPECT_EQ(flips, 1000); // without the band every step across the switch flips it
+        }
+    }
+}
+
+TEST_F(SchedulerTest, ACameraLookingAwayNeverGeneratesCellsBehindIt) {
+    Scheduler scheduler(catalog_, cache_, options(0, 2.0));
+    const CellBounds& middle = middleCell();
+    Camera camera;
+    camera.position = {(middle.lo.x + middle.hi.x) * 0.5, (middle.lo.y + middle.hi.y) * 0.5, 40.0};
+    camera.forward = {0.0, 1.0, -0.2};
+    const double startY = camera.position.y;
+    for (int frame = 0; frame < 10; ++frame) {
+        const FrameDecision decision = scheduler.update(camera, frame * 0.1);
+        EXPECT_GT(decision.terminalCells, 0u);
+        // Everything started is of a visible Terminals cell, or a prefetch.
+        for (size_t i = 0; i < decision.started.size() - decision.prefetchStarted; ++i) {
+            const CellDecision* c = find(decision, catalog_.batch(decision.started[i]).cell);
+            ASSERT_NE(c, nullptr);
+            EXPECT_EQ(c->lod, CellLod::Terminals);
+        }
+        camera.position.y += 5.0; // forward, so prefetch looks ahead too
+    }
+    size_t behind = 0, generated = 0;
+    for (uint32_t b = 0; b < catalog_.batchCount(); ++b) {
+        const CellBounds& bounds = *catalog_.index().boundsOf(catalog_.batch(b).cell);
+        const bool cached = cache_.find(catalog_.key(b)) != nullptr;
+        generated += cached;
+        if (bounds.hi.y < startY - 60.0) { // wholly behind the eye from the first frame on
+            ++behind;
+            EXPECT_FALSE(cached) << "batch " << b << " behind the camera was generated";
+        }
+    }
+    EXPECT_GT(behind, 5u);
+    EXPECT_GT(generated, 0u);
+}
+
+TEST_F(SchedulerTest, PrefetchRequestsCellsAheadOfAMovingCamera) {
+    const CellBounds& target = middleCell();
+    const auto flipFrame = [&](double prefetchSeconds, bool& targetAlreadyCached) {
+        cache::TerminalSetCache cache{cache::CacheOptions{}};
+        Scheduler scheduler(catalog_, cache, options(0, prefetchSeconds));
+        Camera camera = southOf(target, 3000.0);
+        uint32_t prefetched = 0;
+        for (int frame = 0; frame < 40; ++frame) {
+            const uint32_t first = catalog_.firstBatchOf(target.cell);
+            targetAlreadyCached = cache.find(catalog_.key(first)) != nullptr;
+            const FrameDecision decision = scheduler.update(camera, frame * 1.0);
+            for (size_t i = decision.started.size() - decision.prefetchStarted; i < decision.started.size();
+                 ++i) {
+                // A prefetched batch's cell is not (yet) visible at Terminals.
+                const CellDecision* c = find(decision, catalog_.batch(decision.started[i]).cell);
+                EXPECT_TRUE(c == nullptr || c->lod == CellLod::Extruded);
+            }
+            prefetched += decision.prefetchStarted;
+            if (find(decision, target.cell)->lod == CellLod::Terminals) {
+                if (prefetchSeconds > 0.0) {
+                    EXPECT_GT(prefetched, 0u);
+                }
+                return frame;
+            }
+            camera.position.y += 100.0; // 100 m/s
+        }
+        return -1;
+    };
+    bool cachedWithout = true, cachedWith = false;
+    const int without = flipFrame(0.0, cachedWithout);
+    const int with = flipFrame(3.0, cachedWith);
+    ASSERT_GE(without, 0);
+    EXPECT_EQ(with, without); // prefetch changes what is generated, never the LOD
+    EXPECT_FALSE(cachedWithout);
+    EXPECT_TRUE(cachedWith); // ready before the cell needed it
+}
+
+TEST_F(SchedulerTest, WorkersGenerateInTheBackgroundWithoutBlockingUpdate) {
+    // Towers make every business batch slow to expand, so blocking would show.
+    ASSERT_TRUE(catalog_.setParams(GrammarName{"business"}, {{"floors", 120.0}}).ok);
+    // The camera stands in the cell of the biggest business batch, whose sse puts it first.
+    uint32_t biggest = 0;
+    for (uint32_t b = 0; b < catalog_.batchCount(); ++b)
+        if (catalog_.batch(b).grammar == 0 &&
+            catalog_.batch(b).buildings.size() > catalog_.batch(biggest).buildings.size())
+            biggest = b;
+    const CellBounds& target = *catalog_.index().boundsOf(catalog_.batch(biggest).cell);
+    const Camera camera = southOf(target, 0.0);
+    Scheduler scheduler(catalog_, cache_, options(8, 0.0, 2));
+
+    const auto begin = Clock::now();
+    const FrameDecision first = scheduler.update(camera, 0.0);
+    const double updateSeconds = std::chrono::duration<double>(Clock::now() - begin).count();
+    ASSERT_FALSE(first.started.empty());
+    EXPECT_LE(first.started.size(), 4u); // 2 * workers in flight at most
+    EXPECT_EQ(first.readyBatches, 0u);
+    for (const uint32_t b : first.started) {
+        const CellDecision* c = find(first, catalog_.batch(b).cell);
+        ASSERT_NE(c, nullptr);
+        EXPECT_NE(std::find(c->requested.begin(), c->requested.end(), b), c->requested.end());
+    }
+
+    scheduler.drain();
+    EXPECT_EQ(scheduler.generatedBatches(), first.started.size());
+    EXPECT_EQ(scheduler.failedBatches(), 0u);
+    const FrameDecision second = scheduler.update(camera, 0.1);
+    EXPECT_EQ(second.readyBatches, first.started.size());
+    for (const uint32_t b : first.started)
+        EXPECT_EQ(std::find(second.started.begin(), second.started.end(), b), second.started.end());
+
+    double slowest = 0.0;
+    for (const uint32_t b : first.started) {
+        const auto t0 = Clock::now();
+        const grammar::TerminalSet set = catalog_.generate(b);
+        slowest = std::max(slowest, std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    EXPECT_LT(updateSeconds, 0.25 * slowest)
+        << "update " << updateSeconds << " s, generation " << slowest << " s";
+
+    // Keep going until everything visible is ready; no frame waits.
+    for (int frame = 2; frame < 200 && scheduler.update(camera, frame * 0.1).requestedBatches > 0; ++frame)
+        scheduler.drain();
+    EXPECT_EQ(scheduler.update(camera, 100.0).requestedBatches, 0u);
+}
+
+TEST_F(SchedulerTest, ATimeBudgetStartsOneBatchPerFrameWhenSpent) {
+    SchedulerOptions o = options(0);
+    o.maxMillisecondsPerFrame = 1e-9; // spent as soon as anything ran
+    Scheduler scheduler(catalog_, cache_, o);
+    const Camera camera = southOf(middleCell(), 0.0);
+    const FrameDecision first = scheduler.update(camera, 0.0);
+    EXPECT_EQ(first.started.size(), 1u);
+    EXPECT_GT(first.requestedBatches, 0u);
+    EXPECT_EQ(scheduler.update(camera, 0.1).started.size(), 1u);
+    EXPECT_EQ(cache_.stats().generations, 2u);
+}
+
+TEST_F(SchedulerTest, TheCacheKeepsItsByteBudgetAcrossAWalk) {
+    uint64_t total = 0;
+    for (uint32_t b = 0; b < catalog_.batchCount(); ++b) total += catalog_.generate(b).byteSize();
+    cache::CacheOptions small;
+    small.memoryBudgetBytes = total / 6;
+    cache::TerminalSetCache cache(small);
+    Scheduler scheduler(catalog_, cache, options(4, 1.0));
+
+    const auto cells = catalog_.index().cells();
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (const CellBounds& c : cells) lo = glm::min(lo, c.lo), hi = glm::max(hi, c.hi);
+    Camera camera;
+    camera.forward = {1.0, 0.0, -0.3};
+    const int frames = 120;
+    for (int frame = 0; frame < frames; ++frame) {
+        const double t = frame / double(frames - 1);
+        camera.position = {lo.x + t * (hi.x - lo.x), lo.y + (0.3 + 0.4 * t) * (hi.y - lo.y), 30.0};
+        scheduler.update(camera, frame * 0.2);
+        EXPECT_LE(cache.stats().memoryBytes, small.memoryBudgetBytes) << "frame " << frame;
+    }
+    const cache::CacheStats stats = cache.stats();
+    EXPECT_GT(stats.generations, 10u);
+    EXPECT_GT(stats.evictions, 0u);
+    EXPECT_EQ(stats.pinnedBytes, 0u);
+}
+
+} // namespace
+} // namespace hexlod::cells
