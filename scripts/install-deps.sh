@@ -8,6 +8,8 @@ packages=(
     libglm-dev libtbb-dev libzstd-dev
     nlohmann-json3-dev libcli11-dev libspdlog-dev
     libosmium2-dev libprotozero-dev zlib1g-dev libbz2-dev libexpat1-dev
+    libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libosmesa6-dev
+    libopenexr-dev libstb-dev libflann-dev liblz4-dev
     googletest libgtest-dev libbenchmark-dev
     clang-14 libclang-rt-14-dev clang-format
 )
