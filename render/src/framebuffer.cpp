@@ -117,6 +117,11 @@ void Framebuffer::clear(float r, float g, float b, float a) const {
     }
 }
 
+void Framebuffer::clearAttachment(uint32_t attachment, float r, float g, float b, float a) const {
+    const float color[4] = {r, g, b, a};
+    if (attachment < colors_.size()) gl::glClearNamedFramebufferfv(id_, GL_COLOR, GLint(attachment), color);
+}
+
 Image Framebuffer::readColor(uint32_t attachment) const {
     if (attachment >= colors_.size()) return {};
     return readAttachment(id_, GL_COLOR_ATTACHMENT0 + attachment, GL_RGBA, 4, desc_.width, desc_.height);

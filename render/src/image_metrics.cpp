@@ -78,8 +78,11 @@ ImageDifference compareImages(const Image& test, const Image& reference, bool co
         const float* a = test.pixels.data() + i * test.channels;
         const float* b = reference.pixels.data() + i * reference.channels;
         if (masked && a[3] <= 0.0f && b[3] <= 0.0f) continue;
+        // Masked images are compared as a viewer sees them over black: colour times coverage.
+        const double wa = masked ? std::clamp(a[3], 0.0f, 1.0f) : 1.0,
+                     wb = masked ? std::clamp(b[3], 0.0f, 1.0f) : 1.0;
         for (uint32_t c = 0; c < compared; ++c) {
-            double d = double(std::clamp(a[c], 0.0f, 1.0f)) - double(std::clamp(b[c], 0.0f, 1.0f));
+            double d = wa * std::clamp(a[c], 0.0f, 1.0f) - wb * std::clamp(b[c], 0.0f, 1.0f);
             sum += d * d;
             result.maxAbs = std::max(result.maxAbs, std::abs(d));
         }

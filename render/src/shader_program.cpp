@@ -119,6 +119,9 @@ void ShaderProgram::set(const char* name, const glm::vec3& value) const {
 void ShaderProgram::set(const char* name, const glm::vec4& value) const {
     gl::glProgramUniform4fv(id_, gl::glGetUniformLocation(id_, name), 1, glm::value_ptr(value));
 }
+void ShaderProgram::set(const char* name, const glm::uvec4& value) const {
+    gl::glProgramUniform4ui(id_, gl::glGetUniformLocation(id_, name), value.x, value.y, value.z, value.w);
+}
 void ShaderProgram::set(const char* name, const glm::mat4& value) const {
     gl::glProgramUniformMatrix4fv(id_, gl::glGetUniformLocation(id_, name), 1, GL_FALSE,
                                   glm::value_ptr(value));

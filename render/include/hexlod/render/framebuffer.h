@@ -32,6 +32,8 @@ public:
     void bind() const;
     // Clears every colour attachment to `color` and depth to 1.
     void clear(float r, float g, float b, float a) const;
+    // Clears one colour attachment, leaving the others and depth alone.
+    void clearAttachment(uint32_t attachment, float r, float g, float b, float a) const;
 
     uint32_t width() const { return desc_.width; }
     uint32_t height() const { return desc_.height; }

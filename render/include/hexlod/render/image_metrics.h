@@ -16,8 +16,9 @@ struct ImageDifference {
 };
 
 // Compares RGB (the first three channels; a single channel image compares that one). With
-// `coverageAlpha`, only pixels where either image's alpha exceeds 0 count, so a shape's
-// error is not diluted by empty background. Images of different sizes or channel counts
+// `coverageAlpha`, colours are weighted by their alpha (the images as seen over black) and
+// only pixels where either image's alpha exceeds 0 count, so a shape's error is not diluted
+// by empty background. Images of different sizes or channel counts
 // give pixels == 0 and psnr == NaN.
 ImageDifference compareImages(const Image& test, const Image& reference, bool coverageAlpha = false);
 

@@ -45,6 +45,7 @@ public:
     void set(const char* name, const glm::vec2& value) const;
     void set(const char* name, const glm::vec3& value) const;
     void set(const char* name, const glm::vec4& value) const;
+    void set(const char* name, const glm::uvec4& value) const;
     void set(const char* name, const glm::mat4& value) const;
 
 private:
