@@ -1,6 +1,7 @@
 #include "expression_compiler.h"
 #include "hexlod/grammar/compiled_grammar.h"
 #include "hexlod/grammar/parser.h"
+#include "hexlod/grammar/rule_reachability.h"
 #include "rule_lowering.h"
 #include "termination_check.h"
 
@@ -115,20 +116,7 @@ void markDefaultExtrudedStops(CompiledGrammar& grammar) {
 }
 
 void warnUnreachable(const CompiledGrammar& grammar, DiagnosticList& diagnostics) {
-    std::vector<bool> reached(grammar.rules.size(), false);
-    std::vector<uint32_t> stack{grammar.axiom};
-    reached[grammar.axiom] = true;
-    while (!stack.empty()) {
-        const CompiledRule& rule = grammar.rules[stack.back()];
-        stack.pop_back();
-        for (uint32_t s = 0; s < rule.successorCount; ++s) {
-            const uint32_t successor = grammar.successors[rule.firstSuccessor + s];
-            if (successor != kNullRule && !reached[successor]) {
-                reached[successor] = true;
-                stack.push_back(successor);
-            }
-        }
-    }
+    const std::vector<bool> reached = reachableRules(grammar);
     for (uint32_t r = 0; r < grammar.rules.size(); ++r) {
         if (!reached[r]) {
             diagnostics.warning(grammar.ruleLocations[r], "rule '" + grammar.ruleNames[r] +
