@@ -1,5 +1,7 @@
 #include "hexlod/scene/scene_config.h"
 
+#include "json_fields.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -12,82 +14,6 @@
 
 namespace hexlod::scene {
 namespace {
-
-using Json = nlohmann::json;
-
-// Thrown with the field path and the problem; parseSceneConfig turns it into `error`.
-struct ConfigError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-// Reads one JSON object, remembering which keys were read so that anything left over (a
-// typo such as "cel_size") is an error naming it instead of a silently ignored setting.
-class Fields {
-public:
-    Fields(const Json& object, std::string path) : object_(object), path_(std::move(path)) {
-        if (!object_.is_object()) fail(path_.empty() ? "top level" : path_, "expected an object");
-    }
-
-    [[noreturn]] static void fail(const std::string& path, const std::string& message) {
-        throw ConfigError(path + ": " + message);
-    }
-    std::string at(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-    const Json* find(const std::string& key) {
-        read_.insert(key);
-        const auto it = object_.find(key);
-        return it == object_.end() ? nullptr : &*it;
-    }
-    const Json& require(const std::string& key) {
-        const Json* value = find(key);
-        if (!value) fail(at(key), "is required");
-        return *value;
-    }
-
-    double number(const std::string& key, double fallback, double lo, double hi) {
-        const Json* value = find(key);
-        return value ? checkedNumber(*value, at(key), lo, hi) : fallback;
-    }
-    uint64_t whole(const std::string& key, uint64_t fallback, uint64_t hi) {
-        const Json* value = find(key);
-        return value ? checkedWhole(*value, at(key), hi) : fallback;
-    }
-    std::string text(const std::string& key, const std::string& fallback) {
-        const Json* value = find(key);
-        if (!value) return fallback;
-        if (!value->is_string() || value->get<std::string>().empty())
-            fail(at(key), "expected a non-empty string");
-        return value->get<std::string>();
-    }
-
-    void finish() const {
-        for (const auto& [key, value] : object_.items()) {
-            if (!read_.count(key)) fail(at(key), "unknown field (see docs/scene.md)");
-        }
-    }
-
-    static double checkedNumber(const Json& value, const std::string& path, double lo, double hi) {
-        if (!value.is_number()) fail(path, "expected a number");
-        const double v = value.get<double>();
-        if (!std::isfinite(v) || v < lo || v > hi) {
-            std::ostringstream range;
-            range << "must be a finite number in [" << lo << ", " << hi << "], got " << value.dump();
-            fail(path, range.str());
-        }
-        return v;
-    }
-    static uint64_t checkedWhole(const Json& value, const std::string& path, uint64_t hi) {
-        if (!value.is_number_integer() || value.get<int64_t>() < 0 || value.get<uint64_t>() > hi) {
-            fail(path, "expected a whole number in [0, " + std::to_string(hi) + "], got " + value.dump());
-        }
-        return value.get<uint64_t>();
-    }
-
-private:
-    const Json& object_;
-    std::string path_;
-    std::set<std::string> read_;
-};
 
 std::string resolve(const std::string& baseDir, const std::string& path) {
     const std::filesystem::path p(path);
@@ -281,26 +207,7 @@ void readShapes(Fields& root, const std::string& baseDir, SceneConfig& scene) {
 }
 
 void readLod(Fields& root, SceneConfig& scene) {
-    const Json* value = root.find("lod");
-    if (!value) return;
-    Fields fields(*value, "lod");
-    LodProfile& lod = scene.lod;
-    lod.maxScreenSpaceError = fields.number("max_screen_space_error", lod.maxScreenSpaceError, 0.01, 1000.0);
-    lod.hysteresis = fields.number("hysteresis", lod.hysteresis, 0.0, 1.0);
-    if (const Json* errors = fields.find("geometric_error")) {
-        const std::string path = fields.at("geometric_error");
-        if (!errors->is_array() || errors->size() != 5)
-            Fields::fail(path, "expected 5 numbers, LOD0 to LOD4");
-        for (size_t i = 0; i < 5; ++i) {
-            lod.geometricError[i] =
-                Fields::checkedNumber((*errors)[i], path + "[" + std::to_string(i) + "]", 0.0, 1e6);
-            // A finer LOD must not claim a larger error than a coarser one, or selection flips.
-            if (i > 0 && lod.geometricError[i] > lod.geometricError[i - 1]) {
-                Fields::fail(path, "errors must not grow from LOD0 to LOD4");
-            }
-        }
-    }
-    fields.finish();
+    if (const Json* value = root.find("lod")) scene.lod = readLodProfile(*value, "lod", scene.lod);
 }
 
 void readCache(Fields& root, const std::string& baseDir, SceneConfig& scene) {
@@ -314,19 +221,6 @@ void readCache(Fields& root, const std::string& baseDir, SceneConfig& scene) {
     scene.cache.diskPath = disk.empty() ? "" : resolve(baseDir, disk);
     if (scene.cache.memoryBytes == 0) Fields::fail("cache.memory_mb", "must be at least 1");
     fields.finish();
-}
-
-std::string lineAndColumn(std::string_view text, size_t byte) {
-    size_t line = 1, column = 1;
-    for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-        if (text[i] == '\n') {
-            ++line;
-            column = 1;
-        } else {
-            ++column;
-        }
-    }
-    return std::to_string(line) + ":" + std::to_string(column);
 }
 
 } // namespace

@@ -89,4 +89,8 @@ bool parseSceneConfig(std::string_view text, const std::string& file, const std:
                       SceneConfig& out, std::string& error);
 bool loadSceneConfig(const std::string& path, SceneConfig& out, std::string& error);
 
+// Reads an LOD profile file (the scene config's "lod" object on its own, docs/scene.md) over
+// the values already in `out`; false with "<file>: <field>: <problem>".
+bool loadLodProfile(const std::string& path, LodProfile& out, std::string& error);
+
 } // namespace hexlod::scene
