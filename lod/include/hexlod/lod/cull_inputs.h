@@ -1,0 +1,52 @@
+// What the cull and LOD pass works on, the same for the GPU pass and its CPU reference: the
+// resident batches in view, the shape table, and the frame constants built from the camera
+// and the LOD profile.
+#pragma once
+
+#include "hexlod/cells/frustum.h"
+#include "hexlod/grammar/terminal_set.h"
+#include "hexlod/lod/cull_shared.h"
+#include "hexlod/scene/scene_config.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace hexlod::lod {
+
+struct CullBatchInput {
+    const grammar::TerminalSet* set = nullptr;    // its records and counts per shape
+    const std::vector<uint32_t>* pages = nullptr; // where the arena holds its records (TerminalArena)
+    glm::dvec3 cellOrigin{0.0};                   // world, what record positions are relative to
+    uint32_t shapeBase = 0;                       // global index of its grammar's shape 0
+};
+
+struct CullInputs {
+    std::vector<CullBatchInput> batches;
+    uint32_t shapeCount = 0;            // global shapes
+    std::vector<uint8_t> shapeImpostor; // per global shape: 1 when it has an impostor
+    shared::CullFrame frame{};
+    glm::dvec3 camera{0.0};
+};
+
+// Frame constants: the frustum's planes relative to the camera, and the distances from which
+// LOD3 and LOD2 are enough by screen-space error (3D Tiles: sse = geometricError * viewport
+// height / (distance * 2 tan(fovY / 2)); a LOD is enough once sse <= maxScreenSpaceError).
+// `impostors` false forces LOD4 everywhere (the all-LOD4 reference).
+shared::CullFrame makeCullFrame(const cells::Frustum& frustum, const scene::LodProfile& profile, double fovY,
+                                uint32_t viewportHeight, double transitionBand, bool impostors);
+
+// The distance from which a LOD of geometric error `error` is enough.
+double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,
+                   uint32_t viewportHeight);
+
+// Per-shape layout of the draw lists for these batches: list capacity per shape is the number
+// of its terminals among the batches; bases are their prefix sums.
+struct DrawListLayout {
+    std::vector<uint32_t> base, capacity; // per global shape
+    uint64_t total = 0;
+};
+DrawListLayout layoutDrawLists(const CullInputs& inputs);
+
+} // namespace hexlod::lod

@@ -1,0 +1,159 @@
+// The per-terminal cull and LOD decision (thesis §7.5.3), written once in the common subset of
+// C++ and GLSL: terminal_cull.comp includes it through ShaderLibrary, cpu_cull.cpp as a header.
+// One source is what lets tests demand *identical* visible sets and LOD choices from the GPU
+// pass and the CPU reference: every compared value is computed by the same operations in the
+// same order, `precise` in GLSL so the driver may not fuse or reorder them (C++ on x86-64
+// without -mfma neither fuses nor reorders).
+//
+// Rules for this file: types from the aliases below, no references (use HEXLOD_OUT), no
+// overloads, float literals with an f suffix (C++ would compute `0.5 * x` in double), no library
+// calls that GLSL and glm might compute differently (dot is spelled out).
+#ifdef __cplusplus
+#pragma once
+// Angle brackets: the shader library expands only #include "..." and leaves these to GLSL
+// preprocessing, which skips them with the rest of this block.
+#include <hexlod/render/gpu_types.h>
+
+#include <glm/glm.hpp>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+namespace hexlod::lod::shared {
+using uint = uint32_t;
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using gpu::GpuTerminal;
+inline float uintBitsToFloat(uint bits) {
+    return std::bit_cast<float>(bits);
+}
+inline int asSigned(uint bits) {
+    return int32_t(bits);
+}
+using std::sqrt;
+#define HEXLOD_PRECISE
+#define HEXLOD_OUT(type) type&
+#define HEXLOD_FN inline
+#else
+#define HEXLOD_PRECISE precise
+#define HEXLOD_OUT(type) out type
+#define HEXLOD_FN
+int asSigned(uint bits) {
+    return int(bits);
+}
+#endif
+
+// Frame constants of the cull pass (a std140 uniform block; every member a vec4).
+struct CullFrame {
+    vec4 planes[6];   // camera-relative frustum planes: inside when dot(xyz, p) + w >= 0
+    vec4 lodDistance; // x, y: squared distances from which LOD3, LOD2 are enough; z: relative
+                      // transition band; w: 1 when impostors may be used at all
+};
+
+// Per global shape (std430 uvec4): x, the first slot of its draw lists; y, their capacity
+// (LOD4 entries fill from the front, impostor entries, LOD3 and LOD2, from the back); z, 1 when
+// it has an impostor. Counters per shape (uvec4): LOD4, impostor, LOD3, LOD2 entries.
+
+// One resident batch, as the pass sees it (std430, 16 bytes).
+struct CullBatch {
+    vec3 origin;    // the batch's cell origin minus the camera, rounded to float from double
+    uint shapeBase; // global index of the batch grammar's shape 0
+};
+
+// The records of a batch lie in arena pages of HEXLOD_ARENA_PAGE records; one workgroup culls
+// one page, described by a uvec4: batch index, first arena record of the page, records in it, 0.
+#define HEXLOD_ARENA_PAGE 64u
+
+// LOD classes written by the pass.
+#define HEXLOD_CULLED 0u
+#define HEXLOD_LOD2 2u
+#define HEXLOD_LOD3 3u
+#define HEXLOD_LOD4 4u
+
+HEXLOD_FN float dot3(vec3 a, vec3 b) {
+    HEXLOD_PRECISE float d = a.x * b.x + a.y * b.y;
+    HEXLOD_PRECISE float e = d + a.z * b.z;
+    return e;
+}
+
+// IEEE half to float, exactly (GLSL's unpackHalf2x16 is exact too, but one source is safer).
+HEXLOD_FN float halfToFloat(uint h) {
+    uint sign = (h & 0x8000u) << 16;
+    uint exponent = (h >> 10) & 0x1fu;
+    uint mantissa = h & 0x3ffu;
+    if (exponent == 0u) {
+        // Zero or subnormal: mantissa * 2^-24, exact in float.
+        HEXLOD_PRECISE float value = float(mantissa) * 5.9604644775390625e-8f;
+        return sign != 0u ? -value : value;
+    }
+    if (exponent == 31u) return uintBitsToFloat(sign | 0x7f800000u | (mantissa << 13));
+    return uintBitsToFloat(sign | ((exponent + 112u) << 23) | (mantissa << 13));
+}
+
+HEXLOD_FN float snorm16ToFloat(uint bits) {
+    HEXLOD_PRECISE float value = float(asSigned(bits << 16) >> 16) / 32767.0f;
+    return value < -1.0f ? -1.0f : value;
+}
+
+// The terminal's scope axes from its packed quaternion (x, y, z, w as snorm16). The quaternion is
+// not renormalised: snorm16 error is 1.5e-5, far below anything culling decides on.
+HEXLOD_FN void terminalAxes(GpuTerminal t, HEXLOD_OUT(vec3) axisX, HEXLOD_OUT(vec3) axisY,
+                            HEXLOD_OUT(vec3) axisZ) {
+    float x = snorm16ToFloat(t.orientation.x & 0xffffu), y = snorm16ToFloat(t.orientation.x >> 16);
+    float z = snorm16ToFloat(t.orientation.y & 0xffffu), w = snorm16ToFloat(t.orientation.y >> 16);
+    HEXLOD_PRECISE float xx = x * x, yy = y * y, zz = z * z, xy = x * y, xz = x * z, yz = y * z;
+    HEXLOD_PRECISE float wx = w * x, wy = w * y, wz = w * z;
+    HEXLOD_PRECISE float xAxis0 = 1.0f - 2.0f * (yy + zz), xAxis1 = 2.0f * (xy + wz),
+                         xAxis2 = 2.0f * (xz - wy);
+    HEXLOD_PRECISE float yAxis0 = 2.0f * (xy - wz), yAxis1 = 1.0f - 2.0f * (xx + zz),
+                         yAxis2 = 2.0f * (yz + wx);
+    HEXLOD_PRECISE float zAxis0 = 2.0f * (xz + wy), zAxis1 = 2.0f * (yz - wx),
+                         zAxis2 = 1.0f - 2.0f * (xx + yy);
+    axisX = vec3(xAxis0, xAxis1, xAxis2);
+    axisY = vec3(yAxis0, yAxis1, yAxis2);
+    axisZ = vec3(zAxis0, zAxis1, zAxis2);
+}
+
+// Frustum, backface and LOD for one terminal whose corner lies at `corner` relative to the
+// camera; `impostors` says whether its shape has an impostor to fall back on. `transition` is
+// the LOD4 -> LOD3 or LOD3 -> LOD2 blend in [0, 1] (0: this LOD fully), for the draw passes.
+HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, bool impostors,
+                                HEXLOD_OUT(float) transition) {
+    transition = 0.0f;
+    vec3 axisX, axisY, axisZ;
+    terminalAxes(t, axisX, axisY, axisZ);
+    float width = halfToFloat(t.size & 0xffffu), height = halfToFloat(t.size >> 16);
+    HEXLOD_PRECISE float depth = halfToFloat(t.shapeAndDepth >> 16) * (width < height ? width : height);
+    // The scope box spans depth on both sides of the wall plane (meshes recede to t = -1).
+    HEXLOD_PRECISE vec3 centre = corner + axisX * (0.5f * width) + axisY * (0.5f * height);
+    HEXLOD_PRECISE float radiusSquared = 0.25f * (width * width + height * height + 4.0f * depth * depth);
+    HEXLOD_PRECISE float radius = sqrt(radiusSquared);
+    for (int i = 0; i < 6; ++i) {
+        HEXLOD_PRECISE float distance = dot3(vec3(frame.planes[i]), centre) + frame.planes[i].w;
+        if (distance < -radius) return HEXLOD_CULLED;
+    }
+    // Backface: the camera (at the origin) behind the plane the shape recedes to sees none of
+    // its front; its protrusion keeps it visible from a little behind the wall plane itself.
+    HEXLOD_PRECISE float inFront = -dot3(axisZ, corner);
+    if (inFront < -depth) return HEXLOD_CULLED;
+    if (!impostors || frame.lodDistance.w == 0.0f) return HEXLOD_LOD4;
+    HEXLOD_PRECISE float distanceSquared = dot3(centre, centre);
+    uint lod = distanceSquared >= frame.lodDistance.y   ? HEXLOD_LOD2
+               : distanceSquared >= frame.lodDistance.x ? HEXLOD_LOD3
+                                                        : HEXLOD_LOD4;
+    // Transitions run over the last `band` of each LOD's range, toward the coarser one.
+    float threshold = sqrt(lod == HEXLOD_LOD4 ? frame.lodDistance.x : frame.lodDistance.y);
+    float start = threshold * (1.0f - frame.lodDistance.z);
+    float distance = sqrt(distanceSquared);
+    if (lod != HEXLOD_LOD2 && distance > start && threshold > start) {
+        transition = (distance - start) / (threshold - start);
+    }
+    return lod;
+}
+
+#ifdef __cplusplus
+} // namespace hexlod::lod::shared
+#endif

@@ -1,0 +1,81 @@
+// The GPU cull and LOD pass (thesis §7.5.3): terminal_cull.comp over every terminal of the
+// resident batches in view, then cull_finalize.comp turning its counters into indirect draw
+// commands. Needs a current GL context. Its buffers grow when a frame needs more and are
+// otherwise reused frame after frame.
+#pragma once
+
+#include "hexlod/lod/cull_inputs.h"
+#include "hexlod/render/shader_program.h"
+
+#include <glm/vec4.hpp>
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace hexlod::lod {
+
+// Where a global shape's mesh lies in the mesh buffers, for its LOD4 draw command.
+struct MeshDrawInfo {
+    uint32_t indexCount = 0, firstIndex = 0;
+    int32_t baseVertex = 0;
+};
+
+// Byte offsets of the commands in commandBuffer(): shapeCount DrawElementsIndirectCommands
+// (20 bytes each) for LOD4, then shapeCount DrawArraysIndirectCommands (16 bytes) for impostors.
+inline constexpr uint32_t kLod4CommandStride = 20, kImpostorCommandStride = 16;
+
+class GpuCull {
+public:
+    GpuCull() = default;
+    ~GpuCull();
+    GpuCull(const GpuCull&) = delete;
+    GpuCull& operator=(const GpuCull&) = delete;
+
+    bool init(std::string& error);
+
+    // Culls the batches of `inputs`, whose records lie in `arena`, and writes draw lists and
+    // commands. `meshes` has one entry per global shape.
+    void run(const CullInputs& inputs, uint32_t arena, std::span<const MeshDrawInfo> meshes);
+
+    const DrawListLayout& layout() const { return layout_; }
+    uint32_t shapeCount() const { return shapeCount_; }
+    uint32_t listBuffer() const { return buffers_[kLists].id; }
+    uint32_t commandBuffer() const { return buffers_[kCommands].id; }
+    uint64_t byteSize() const; // GPU memory of the pass's buffers
+
+    // Per shape: LOD4, impostor, LOD3, LOD2 entries (waits for the pass).
+    std::vector<glm::uvec4> readCounters() const;
+    // The draw lists as written (tests; waits for the pass).
+    std::vector<gpu::GpuTerminal> readLists() const;
+
+private:
+    enum BufferIndex {
+        kFrame,
+        kBatches,
+        kWorkgroups,
+        kShapes,
+        kCounters,
+        kLists,
+        kMeshes,
+        kCommands,
+        kBufferCount
+    };
+    struct Buffer {
+        uint32_t id = 0;
+        uint64_t capacity = 0;
+    };
+    // Makes buffer `index` hold at least `bytes`, growing it by doubling.
+    void reserve(BufferIndex index, uint64_t bytes);
+
+    render::ShaderProgram cull_, finalize_;
+    Buffer buffers_[kBufferCount];
+    DrawListLayout layout_;
+    uint32_t shapeCount_ = 0;
+};
+
+// The lod module's embedded GLSL (lod/shaders/ and cull_shared.h) on top of render's and
+// impostor's.
+render::ShaderLibrary lodShaderLibrary();
+
+} // namespace hexlod::lod

@@ -1,0 +1,45 @@
+#version 450 core
+// One pass over every terminal of the resident batches in view (thesis §7.5.3, after niagara's
+// drawcull.comp): frustum and backface culling and the LOD4/LOD3/LOD2 choice, compacted into
+// per-shape draw lists through atomic counters. One workgroup reads one arena page of a batch.
+#include "gpu_types.h"
+#include "cull_shared.h"
+
+layout(local_size_x = HEXLOD_ARENA_PAGE) in;
+
+layout(std140, binding = 0) uniform CullFrameBlock { CullFrame frame; };
+layout(std430, binding = 0) readonly buffer ArenaBuffer { GpuTerminal arena[]; };
+layout(std430, binding = 1) readonly buffer BatchBuffer { CullBatch batches[]; };
+layout(std430, binding = 2) readonly buffer PageBuffer { uvec4 pages[]; }; // batch, first record, records
+layout(std430, binding = 3) readonly buffer ShapeBuffer { uvec4 shapes[]; };
+layout(std430, binding = 4) buffer CounterBuffer { uvec4 counters[]; };
+layout(std430, binding = 5) writeonly buffer ListBuffer { GpuTerminal lists[]; };
+
+uniform uint workgroupCount;
+
+void main() {
+    uint workgroup = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
+    if (workgroup >= workgroupCount) return;
+    uvec4 page = pages[workgroup];
+    if (gl_LocalInvocationID.x >= page.z) return;
+    CullBatch batch = batches[page.x];
+    GpuTerminal t = arena[page.y + gl_LocalInvocationID.x];
+    uint shape = batch.shapeBase + (t.shapeAndDepth & 0xffffu);
+    uvec4 info = shapes[shape];
+    precise vec3 corner = t.position + batch.origin;
+    float transition;
+    uint lod = classifyTerminal(t, corner, frame, info.z != 0u, transition);
+    if (lod == HEXLOD_CULLED) return;
+    // Draw lists carry the camera-relative corner, the global shape id and, in place of the
+    // building id, the transition factor.
+    t.position = corner;
+    t.building = floatBitsToUint(transition);
+    t.shapeAndDepth = (t.shapeAndDepth & 0xffff0000u) | shape;
+    if (lod == HEXLOD_LOD4) {
+        lists[info.x + atomicAdd(counters[shape].x, 1u)] = t;
+    } else {
+        lists[info.x + info.y - 1u - atomicAdd(counters[shape].y, 1u)] = t;
+        if (lod == HEXLOD_LOD3) atomicAdd(counters[shape].z, 1u);
+        else atomicAdd(counters[shape].w, 1u);
+    }
+}

@@ -1,0 +1,37 @@
+// The reference pass: a loop over the records with the shared decision.
+#include "hexlod/lod/cpu_cull.h"
+
+#include <cstring>
+
+namespace hexlod::lod {
+
+CullResult cullOnCpu(const CullInputs& inputs) {
+    CullResult result;
+    result.lod4.resize(inputs.shapeCount);
+    result.impostor.resize(inputs.shapeCount);
+    for (const CullBatchInput& batch : inputs.batches) {
+        // The GPU receives the origin as float, rounded from the double difference.
+        const glm::vec3 origin = glm::vec3(batch.cellOrigin - inputs.camera);
+        for (const grammar::TerminalRecord& record : batch.set->records) {
+            gpu::GpuTerminal t;
+            std::memcpy(&t, &record, sizeof t);
+            const uint32_t shape = batch.shapeBase + (t.shapeAndDepth & 0xffffu);
+            const glm::vec3 corner = t.position + origin;
+            float transition = 0.0f;
+            const uint32_t lod = shared::classifyTerminal(t, corner, inputs.frame,
+                                                          inputs.shapeImpostor[shape] != 0, transition);
+            if (lod == HEXLOD_CULLED) {
+                ++result.culled;
+                continue;
+            }
+            t.position = corner;
+            t.building = std::bit_cast<uint32_t>(transition);
+            t.shapeAndDepth = (t.shapeAndDepth & 0xffff0000u) | shape;
+            ++result.terminalsPerLod[lod];
+            (lod == HEXLOD_LOD4 ? result.lod4 : result.impostor)[shape].push_back({t, lod});
+        }
+    }
+    return result;
+}
+
+} // namespace hexlod::lod

@@ -1,0 +1,136 @@
+// Driving the cull and finalize compute passes.
+#include "hexlod/lod/gpu_cull.h"
+#include "hexlod/impostor/impostor_textures.h"
+#include "hexlod/lod/terminal_arena.h"
+#include "hexlod/render/gl_api.h"
+
+#include <algorithm>
+
+std::span<const hexlod::render::ShaderFile> hexlodLodShaders();
+
+namespace hexlod::lod {
+namespace {
+
+constexpr uint32_t kWorkgroupSize = 64; // cull_finalize.comp's local size
+
+// The GLSL binding of each buffer (terminal_cull.comp, cull_finalize.comp).
+constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7};
+
+} // namespace
+
+render::ShaderLibrary lodShaderLibrary() {
+    render::ShaderLibrary library = impostor::impostorShaderLibrary();
+    library.add(hexlodLodShaders());
+    return library;
+}
+
+GpuCull::~GpuCull() {
+    for (Buffer& buffer : buffers_)
+        if (buffer.id) gl::glDeleteBuffers(1, &buffer.id);
+}
+
+bool GpuCull::init(std::string& error) {
+    render::ShaderLibrary library = lodShaderLibrary();
+    cull_ = render::ShaderProgram::build(library, {{render::ShaderStage::Compute, "terminal_cull.comp"}}, "",
+                                         error);
+    if (!cull_.valid()) return false;
+    finalize_ = render::ShaderProgram::build(library, {{render::ShaderStage::Compute, "cull_finalize.comp"}},
+                                             "", error);
+    return finalize_.valid();
+}
+
+void GpuCull::reserve(BufferIndex index, uint64_t bytes) {
+    Buffer& buffer = buffers_[index];
+    bytes = std::max<uint64_t>(bytes, 256);
+    if (buffer.capacity >= bytes) return;
+    uint64_t capacity = std::max<uint64_t>(buffer.capacity * 2, bytes);
+    if (buffer.id) gl::glDeleteBuffers(1, &buffer.id);
+    gl::glCreateBuffers(1, &buffer.id);
+    gl::glNamedBufferStorage(buffer.id, GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    buffer.capacity = capacity;
+}
+
+uint64_t GpuCull::byteSize() const {
+    uint64_t total = 0;
+    for (const Buffer& buffer : buffers_) total += buffer.capacity;
+    return total;
+}
+
+void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const MeshDrawInfo> meshes) {
+    shapeCount_ = inputs.shapeCount;
+    layout_ = layoutDrawLists(inputs);
+
+    std::vector<shared::CullBatch> batches;
+    std::vector<glm::uvec4> workgroups; // one per arena page
+    batches.reserve(inputs.batches.size());
+    for (const CullBatchInput& input : inputs.batches) {
+        const uint32_t count = uint32_t(input.set->records.size());
+        shared::CullBatch batch{};
+        batch.origin = glm::vec3(input.cellOrigin - inputs.camera);
+        batch.shapeBase = input.shapeBase;
+        for (uint32_t page = 0; page * kArenaPageRecords < count; ++page) {
+            workgroups.emplace_back(uint32_t(batches.size()), (*input.pages)[page],
+                                    std::min(kArenaPageRecords, count - page * kArenaPageRecords), 0u);
+        }
+        batches.push_back(batch);
+    }
+    std::vector<glm::uvec4> shapes(shapeCount_), meshInfo(shapeCount_);
+    for (uint32_t s = 0; s < shapeCount_; ++s) {
+        shapes[s] = glm::uvec4(layout_.base[s], layout_.capacity[s], inputs.shapeImpostor[s], 0u);
+        const MeshDrawInfo& mesh = meshes[s];
+        meshInfo[s] = glm::uvec4(mesh.indexCount, mesh.firstIndex, uint32_t(mesh.baseVertex), 0u);
+    }
+
+    auto upload = [this](BufferIndex index, const void* data, uint64_t bytes) {
+        reserve(index, bytes);
+        if (bytes) gl::glNamedBufferSubData(buffers_[index].id, 0, GLsizeiptr(bytes), data);
+    };
+    upload(kFrame, &inputs.frame, sizeof inputs.frame);
+    upload(kBatches, batches.data(), batches.size() * sizeof(shared::CullBatch));
+    upload(kWorkgroups, workgroups.data(), workgroups.size() * sizeof(glm::uvec4));
+    upload(kShapes, shapes.data(), shapes.size() * sizeof(glm::uvec4));
+    upload(kMeshes, meshInfo.data(), meshInfo.size() * sizeof(glm::uvec4));
+    reserve(kCounters, uint64_t(shapeCount_) * sizeof(glm::uvec4));
+    gl::glClearNamedBufferSubData(buffers_[kCounters].id, GL_R32UI, 0,
+                                  GLsizeiptr(shapeCount_ * sizeof(glm::uvec4)), GL_RED_INTEGER,
+                                  GL_UNSIGNED_INT, nullptr);
+    reserve(kLists, layout_.total * sizeof(gpu::GpuTerminal));
+    reserve(kCommands, uint64_t(shapeCount_) * (kLod4CommandStride + kImpostorCommandStride));
+
+    gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[kFrame].id);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, arena);
+    for (BufferIndex index : {kBatches, kWorkgroups, kShapes, kCounters, kLists, kMeshes, kCommands}) {
+        gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindings[index], buffers_[index].id);
+    }
+    const uint32_t groups = uint32_t(workgroups.size());
+    if (groups > 0) {
+        cull_.use();
+        cull_.set("workgroupCount", groups);
+        const uint32_t x = std::min<uint32_t>(groups, 65535), y = (groups + x - 1) / x;
+        gl::glDispatchCompute(x, y, 1);
+    }
+    gl::glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    finalize_.use();
+    finalize_.set("shapeCount", shapeCount_);
+    gl::glDispatchCompute((shapeCount_ + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
+    gl::glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
+                        GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+std::vector<glm::uvec4> GpuCull::readCounters() const {
+    std::vector<glm::uvec4> counters(shapeCount_);
+    if (shapeCount_)
+        gl::glGetNamedBufferSubData(buffers_[kCounters].id, 0,
+                                    GLsizeiptr(counters.size() * sizeof(glm::uvec4)), counters.data());
+    return counters;
+}
+
+std::vector<gpu::GpuTerminal> GpuCull::readLists() const {
+    std::vector<gpu::GpuTerminal> lists(layout_.total);
+    if (!lists.empty())
+        gl::glGetNamedBufferSubData(buffers_[kLists].id, 0,
+                                    GLsizeiptr(lists.size() * sizeof(gpu::GpuTerminal)), lists.data());
+    return lists;
+}
+
+} // namespace hexlod::lod

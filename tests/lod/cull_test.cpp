@@ -1,0 +1,213 @@
+// The GPU cull and LOD pass against its CPU reference: identical visible sets and LOD choices
+// on random terminals and cameras, and the culling rules themselves on hand-placed terminals.
+#include "../render/gl_fixture.h"
+
+#include "hexlod/lod/cpu_cull.h"
+#include "hexlod/lod/gpu_cull.h"
+#include "hexlod/lod/terminal_arena.h"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+#include <tuple>
+
+namespace hexlod::lod {
+namespace {
+
+using grammar::TerminalSet;
+
+// A terminal set of `count` random terminals of `shapes` shapes, sorted by shape.
+TerminalSet randomSet(std::mt19937& random, uint32_t count, uint32_t shapes, float extent) {
+    std::uniform_real_distribution<float> position(-extent, extent), unit(-1.0f, 1.0f), size(0.05f, 6.0f),
+        ratio(0.0f, 2.0f);
+    std::uniform_int_distribution<uint32_t> shape(0, shapes - 1);
+    std::vector<grammar::TerminalRecord> records;
+    for (uint32_t i = 0; i < count; ++i) {
+        glm::quat q = glm::normalize(glm::quat(unit(random), unit(random), unit(random), unit(random)));
+        glm::mat3 axes = glm::mat3_cast(q);
+        records.push_back(grammar::packTerminal(
+            glm::vec3(position(random), position(random), position(random) * 0.2f), axes[0], axes[1], axes[2],
+            glm::vec2(size(random), size(random)), ratio(random), uint16_t(shape(random)), i));
+    }
+    std::stable_sort(records.begin(), records.end(), [](const auto& a, const auto& b) {
+        return (a.shapeAndDepth & 0xffff) < (b.shapeAndDepth & 0xffff);
+    });
+    TerminalSet set;
+    set.countPerShape.assign(shapes, 0);
+    for (const auto& r : records) ++set.countPerShape[r.shapeAndDepth & 0xffff];
+    set.records.assign(records.begin(), records.end());
+    return set;
+}
+
+// A record's identity in a list, whatever order the atomics gave it: every word but the
+// transition factor (which is not part of the decision).
+std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t>
+identity(const gpu::GpuTerminal& t) {
+    uint32_t p[3];
+    std::memcpy(p, &t.position, sizeof p);
+    return {p[0], p[1], p[2], t.orientation.x, t.orientation.y, t.size, t.shapeAndDepth};
+}
+
+class CullTest : public render::GlTest {};
+
+TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
+    GpuCull cull;
+    std::string error;
+    ASSERT_TRUE(cull.init(error)) << error;
+    TerminalArena arena;
+    ASSERT_TRUE(arena.create(1 << 18, error)) << error;
+    std::mt19937 random(2024);
+    const uint32_t shapesPerGrammar = 7;
+    std::vector<TerminalSet> sets;
+    for (int b = 0; b < 12; ++b) sets.push_back(randomSet(random, 1000 + 937 * b, shapesPerGrammar, 150.0f));
+    for (int trial = 0; trial < 6; ++trial) {
+        arena.beginFrame(trial);
+        CullInputs inputs;
+        inputs.shapeCount = 2 * shapesPerGrammar;
+        inputs.shapeImpostor.assign(inputs.shapeCount, 1);
+        inputs.shapeImpostor[3] = 0; // a shape without impostor stays LOD4
+        // A city far from the world origin: the camera and cell origins are large doubles.
+        const glm::dvec3 cityOrigin(1e7 * (trial % 2), -3e6 * (trial % 3), 50.0);
+        std::uniform_real_distribution<double> offset(-200.0, 200.0), angle(0.0, 6.283);
+        inputs.camera = cityOrigin + glm::dvec3(offset(random), offset(random), 1.7 + 40.0 * (trial % 3));
+        for (size_t b = 0; b < sets.size(); ++b) {
+            const std::vector<uint32_t>* pages = arena.acquire(b, sets[b]);
+            ASSERT_TRUE(pages);
+            inputs.batches.push_back({&sets[b], pages,
+                                      cityOrigin + glm::dvec3(250.0 * (b % 4), 250.0 * (b / 4), 0.0),
+                                      uint32_t(b % 2) * shapesPerGrammar});
+        }
+        // Roughly toward the middle of the batches, so every trial sees some and misses some.
+        const glm::dvec3 middle = cityOrigin + glm::dvec3(375.0, 250.0, 0.0) - inputs.camera;
+        const double a = std::atan2(middle.y, middle.x) + 0.15 * (angle(random) - 3.14);
+        cells::Frustum frustum(inputs.camera, glm::dvec3(std::cos(a), std::sin(a), -0.1), glm::dvec3(0, 0, 1),
+                               0.3 + 0.4 * trial, 16.0 / 9.0, 0.5, 800.0);
+        scene::LodProfile profile;
+        profile.maxScreenSpaceError = 1.0 + trial;
+        inputs.frame = makeCullFrame(frustum, profile, 0.3 + 0.4 * trial, 720, 0.2, true);
+
+        CullResult reference = cullOnCpu(inputs);
+        std::vector<MeshDrawInfo> meshes(inputs.shapeCount, MeshDrawInfo{36, 0, 0});
+        cull.run(inputs, arena.buffer(), meshes);
+        std::vector<glm::uvec4> counters = cull.readCounters();
+        std::vector<gpu::GpuTerminal> lists = cull.readLists();
+        const DrawListLayout& layout = cull.layout();
+        uint64_t visible = 0;
+        for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
+            ASSERT_EQ(counters[s].x, reference.lod4[s].size()) << "shape " << s << " trial " << trial;
+            ASSERT_EQ(counters[s].y, reference.impostor[s].size()) << "shape " << s << " trial " << trial;
+            auto gpuSorted = [&](uint32_t first, uint32_t count) {
+                std::vector<decltype(identity(lists[0]))> ids;
+                for (uint32_t i = 0; i < count; ++i) ids.push_back(identity(lists[first + i]));
+                std::sort(ids.begin(), ids.end());
+                return ids;
+            };
+            auto cpuSorted = [&](const std::vector<CulledTerminal>& entries, uint32_t lod) {
+                std::vector<decltype(identity(lists[0]))> ids;
+                for (const CulledTerminal& e : entries)
+                    if (lod == 0 || e.lod == lod) ids.push_back(identity(e.record));
+                std::sort(ids.begin(), ids.end());
+                return ids;
+            };
+            EXPECT_EQ(gpuSorted(layout.base[s], counters[s].x), cpuSorted(reference.lod4[s], 0))
+                << "shape " << s;
+            EXPECT_EQ(gpuSorted(layout.base[s] + layout.capacity[s] - counters[s].y, counters[s].y),
+                      cpuSorted(reference.impostor[s], 0))
+                << "shape " << s;
+            uint64_t lod3 = 0;
+            for (const CulledTerminal& e : reference.impostor[s]) lod3 += e.lod == HEXLOD_LOD3;
+            EXPECT_EQ(counters[s].z, lod3);
+            EXPECT_EQ(counters[s].w, reference.impostor[s].size() - lod3);
+            visible += counters[s].x + counters[s].y;
+            if (s == 3) {
+                EXPECT_EQ(counters[s].y, 0u);
+            }
+        }
+        // Some of everything: the trial would prove little if all were culled or all LOD4.
+        EXPECT_GT(visible, 0u);
+        EXPECT_GT(reference.culled, 0u);
+    }
+}
+
+// Hand-placed terminals: a 2 m x 2 m facade tile facing -y at the origin of its cell.
+struct Placed {
+    gpu::GpuTerminal record;
+    TerminalSet set;
+};
+
+Placed facadeTile(glm::vec3 corner, float depthRatio) {
+    Placed placed;
+    grammar::TerminalRecord r = grammar::packTerminal(corner, glm::vec3(1, 0, 0), glm::vec3(0, 0, 1),
+                                                      glm::vec3(0, -1, 0), glm::vec2(2.0f), depthRatio, 0, 0);
+    std::memcpy(&placed.record, &r, sizeof r);
+    placed.set.countPerShape = {1};
+    placed.set.records.push_back(r);
+    return placed;
+}
+
+uint32_t classify(const Placed& placed, const glm::dvec3& camera, const glm::dvec3& forward, double maxSse) {
+    CullInputs inputs;
+    inputs.shapeCount = 1;
+    inputs.shapeImpostor = {1};
+    inputs.camera = camera;
+    inputs.batches.push_back({&placed.set, nullptr, glm::dvec3(0.0), 0});
+    cells::Frustum frustum(camera, forward, glm::dvec3(0, 0, 1), 1.0, 1.5, 0.1, 5000.0);
+    scene::LodProfile profile;
+    profile.maxScreenSpaceError = maxSse;
+    inputs.frame = makeCullFrame(frustum, profile, 1.0, 720, 0.2, true);
+    CullResult result = cullOnCpu(inputs);
+    if (!result.lod4[0].empty()) return HEXLOD_LOD4;
+    if (!result.impostor[0].empty()) return result.impostor[0][0].lod;
+    return HEXLOD_CULLED;
+}
+
+TEST(CullRulesTest, FrustumBackfaceAndDistanceDecideAsDocumented) {
+    Placed tile = facadeTile(glm::vec3(0.0f), 0.25f); // 0.5 m deep
+    const glm::dvec3 north(0, 1, 0);
+    // In front (the tile faces -y), looking at it: LOD4 close, impostors further away.
+    EXPECT_EQ(classify(tile, {1, -5, 1}, north, 2.0), HEXLOD_LOD4);
+    EXPECT_EQ(classify(tile, {1, -200, 1}, north, 2.0), HEXLOD_LOD3);
+    EXPECT_EQ(classify(tile, {1, -3000, 1}, north, 2.0), HEXLOD_LOD2);
+    // Looking away: outside the frustum.
+    EXPECT_EQ(classify(tile, {1, -5, 1}, -north, 2.0), HEXLOD_CULLED);
+    // Behind the wall, further than the tile's depth: backface culled.
+    EXPECT_EQ(classify(tile, {1, 2, 1}, -north, 2.0), HEXLOD_CULLED);
+    // Just behind the wall plane but within its protrusion: still visible.
+    EXPECT_EQ(classify(tile, {1, 0.3, 1}, glm::dvec3(0, -1, -0.2), 2.0), HEXLOD_LOD4);
+    // A larger error budget moves every switch closer.
+    EXPECT_EQ(classify(tile, {1, -200, 1}, north, 16.0), HEXLOD_LOD2);
+}
+
+TEST_F(CullTest, ArenaEvictsTheLeastRecentlyDrawnWhenFull) {
+    TerminalArena arena;
+    std::string error;
+    ASSERT_TRUE(arena.create(3000, error)) << error; // 47 pages of 64: 3008 records
+    std::mt19937 random(1);
+    TerminalSet a = randomSet(random, 1000, 2, 10), b = randomSet(random, 1000, 2, 10),
+                c = randomSet(random, 1500, 2, 10);
+    arena.beginFrame(1);
+    ASSERT_TRUE(arena.acquire(1, a));
+    arena.beginFrame(2);
+    ASSERT_TRUE(arena.acquire(2, b));
+    arena.beginFrame(3);
+    ASSERT_TRUE(arena.acquire(2, b)); // b drawn again: a is now the oldest
+    ASSERT_TRUE(arena.acquire(3, c)); // needs 24 pages, 15 are free: evicts a only, though not adjacent
+    EXPECT_FALSE(arena.resident(1));
+    EXPECT_TRUE(arena.resident(2));
+    EXPECT_TRUE(arena.resident(3));
+    EXPECT_EQ(arena.stats().evictions, 1u);
+    EXPECT_EQ(arena.stats().residentRecords, 2500u);
+    EXPECT_EQ(arena.stats().freePages, 47u - 16u - 24u);
+    // Everything resident is in use this frame: a set that does not fit is refused, not forced.
+    TerminalSet d = randomSet(random, 1000, 2, 10);
+    EXPECT_FALSE(arena.acquire(4, d));
+    EXPECT_EQ(arena.stats().rejected, 1u);
+    TerminalSet huge = randomSet(random, 4000, 2, 10);
+    EXPECT_FALSE(arena.acquire(5, huge));
+    EXPECT_FALSE(arena.create(0, error));
+}
+
+} // namespace
+} // namespace hexlod::lod
