@@ -43,6 +43,8 @@ Scheduler::Scheduler(BatchCatalog& catalog, cache::TerminalSetCache& cache, Sche
         throw std::invalid_argument("maxMillisecondsPerFrame must be >= 0");
     if (!(options_.prefetchSeconds >= 0.0) || !std::isfinite(options_.prefetchSeconds))
         throw std::invalid_argument("prefetchSeconds must be finite and >= 0");
+    if (!(options_.treeTerminalDistance >= 0.0))
+        throw std::invalid_argument("treeTerminalDistance must be >= 0");
     for (uint32_t i = 0; i < options_.workers; ++i) threads_.emplace_back([this] { workerLoop(); });
 }
 
@@ -67,6 +69,14 @@ double Scheduler::screenSpaceError(double distance, const Camera& camera) const 
     if (distance <= 0.0) return std::numeric_limits<double>::infinity();
     return options_.lod.geometricError[1] * camera.viewportHeight /
            (distance * 2.0 * std::tan(camera.fovY * 0.5));
+}
+
+bool Scheduler::isTreeBatch(uint32_t batch) const {
+    return catalog_.batch(batch).grammar >= catalog_.scene().buildingGrammars.size();
+}
+
+bool Scheduler::wantsTrees(double distance) const {
+    return options_.treeTerminalDistance <= 0.0 || distance < options_.treeTerminalDistance;
 }
 
 bool Scheduler::requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue) {
@@ -99,14 +109,16 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
         const auto [lo, hi] = boxOf(i);
         const double distance = distanceToBox(camera.position, lo, hi);
         const double sse = screenSpaceError(distance, camera);
-        lod_[i] = nextLod(lod_[i], sse);
+        lod_[i] = options_.forcedLod ? *options_.forcedLod : nextLod(lod_[i], sse);
         if (!frustum.intersectsBox(lo, hi)) continue;
         CellDecision decision{cells[i].cell, distance, sse, lod_[i], {}, {}};
+        decision.treesAsTerminals = wantsTrees(distance);
         if (lod_[i] == CellLod::Terminals) {
             ++frame.terminalCells;
             const uint32_t first = catalog_.firstBatchOf(cells[i].cell);
             const uint32_t count = static_cast<uint32_t>(catalog_.index().batchesOf(cells[i].cell).size());
             for (uint32_t b = first; b < first + count; ++b) {
+                if (isTreeBatch(b) && !decision.treesAsTerminals) continue;
                 const Busy state = busy(b);
                 if (state == Busy::Failed) continue;
                 if (state == Busy::Generating) {
@@ -133,13 +145,17 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
             for (size_t i = 0; i < cells.size(); ++i) {
                 if (decisionOf[i] >= 0) continue; // already requested as visible
                 const auto [lo, hi] = boxOf(i);
-                const double sse = screenSpaceError(distanceToBox(predicted, lo, hi), camera);
-                if (nextLod(lod_[i], sse) != CellLod::Terminals || !ahead.intersectsBox(lo, hi)) continue;
+                const double distance = distanceToBox(predicted, lo, hi);
+                const double sse = screenSpaceError(distance, camera);
+                const CellLod lod = options_.forcedLod ? *options_.forcedLod : nextLod(lod_[i], sse);
+                if (lod != CellLod::Terminals || !ahead.intersectsBox(lo, hi)) continue;
                 const uint32_t first = catalog_.firstBatchOf(cells[i].cell);
                 const uint32_t count =
                     static_cast<uint32_t>(catalog_.index().batchesOf(cells[i].cell).size());
-                for (uint32_t b = first; b < first + count; ++b)
+                for (uint32_t b = first; b < first + count; ++b) {
+                    if (isTreeBatch(b) && !wantsTrees(distance)) continue;
                     if (busy(b) == Busy::No) requestIfMissing(b, sse, true, queue);
+                }
             }
             frame.prefetchRequests = static_cast<uint32_t>(queue.size() - before);
         }

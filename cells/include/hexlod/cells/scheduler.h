@@ -11,6 +11,8 @@
 //   sets. A hysteresis band keeps a hovering camera from thrashing: Extruded becomes Terminals
 //   above maxSSE * (1 + hysteresis), Terminals becomes Extruded below maxSSE * (1 - hysteresis),
 //   and in between a cell keeps its previous LOD (every cell starts Extruded).
+// - forcedLod, when set, replaces that choice for every cell. Tree batches of a cell farther
+//   than treeTerminalDistance are left out of it (trees are billboards there).
 // - Missing batches (not resident in the cache, not being generated) of visible Terminals cells
 //   are queued by sse, highest first. Then come prefetch requests: the camera position is
 //   extrapolated by its velocity (from the previous update) over prefetchSeconds, and the
@@ -56,15 +58,22 @@ struct Camera {
     double nearPlane = 0.5, farPlane = 20000.0;
 };
 
+enum class CellLod : uint8_t { Extruded, Terminals };
+
 struct SchedulerOptions {
     scene::LodProfile lod;
     uint32_t maxBatchesPerFrame = 8; // 0: no cap
     double maxMillisecondsPerFrame = 0.0;
     uint32_t workers = 0;
     double prefetchSeconds = 1.0;
+    // Every cell takes this LOD whatever its error: the all-LOD4 reference and the forced-LOD
+    // renders of the error reports.
+    std::optional<CellLod> forcedLod;
+    // Tree batches of a Terminals cell are wanted only within this distance (metres; 0: no
+    // limit): further away trees are billboards, and their terminal sets (most of a city's
+    // terminals) are neither generated nor drawn.
+    double treeTerminalDistance = 0.0;
 };
-
-enum class CellLod : uint8_t { Extruded, Terminals };
 
 struct CellDecision {
     HexCoord cell;
@@ -73,6 +82,7 @@ struct CellDecision {
     CellLod lod = CellLod::Extruded;
     std::vector<uint32_t> ready;     // Terminals only: batches resident in the cache
     std::vector<uint32_t> requested; // Terminals only: the other batches (queued or generating)
+    bool treesAsTerminals = false;   // Terminals only: within treeTerminalDistance, its tree batches count
 };
 
 struct FrameDecision {
@@ -117,6 +127,8 @@ private:
     };
 
     CellLod nextLod(CellLod previous, double sse) const;
+    bool isTreeBatch(uint32_t batch) const;
+    bool wantsTrees(double distance) const;
     double screenSpaceError(double distance, const Camera& camera) const;
     // Queues the batch unless the cache holds it; true when it does.
     bool requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue);
