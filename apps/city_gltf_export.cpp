@@ -141,7 +141,6 @@ private:
         for (MeshVertex& v : vertices) v.normal = render::unitSpaceNormal(v.normal, mesh.nominalSize);
         meshes_.push_back(
             {{"name", name}, {"primitives", json::array({writePrimitive(vertices, mesh.indices)})}});
-        ++report_.terminalMeshes;
         return meshIndex_[&mesh] = meshes_.size() - 1;
     }
 
@@ -257,6 +256,7 @@ private:
         for (const auto& [mesh, name] : order) {
             const std::vector<Instance>& list = instances.at(mesh);
             report_.instances += list.size();
+            if (used_.insert(mesh).second) ++report_.terminalMeshes;
             report_.instancesPerMesh[name] += list.size();
             report_.triangles += list.size() * mesh->triangleCount();
             if (options_.flatten)
@@ -340,6 +340,7 @@ private:
     CityExportReport report_;
     json nodes_ = json::array(), meshes_ = json::array(), accessors_ = json::array(), views_ = json::array();
     std::unordered_map<const TerminalMesh*, size_t> meshIndex_;
+    std::set<const TerminalMesh*> used_;
 };
 
 } // namespace
