@@ -11,12 +11,6 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-    const glm::vec3 n = glm::cross(b - a, c - a);
-    const float length = glm::length(n);
-    return length > 0.0f ? n / length : glm::vec3(0.0f);
-}
-
 // Any unit vector perpendicular to `axis`.
 glm::vec3 perpendicular(const glm::vec3& axis) {
     const glm::vec3 helper = std::abs(axis.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
@@ -46,12 +40,23 @@ void MeshBuilder::orientedTriangle(uint32_t a, uint32_t b, uint32_t c, const glm
 
 void MeshBuilder::polygon(std::span<const glm::vec3> points, const glm::vec3& outward, uint32_t rgba) {
     if (points.size() < 3) return;
-    glm::vec3 n = faceNormal(points[0], points[1], points[2]);
-    if (glm::dot(n, outward) < 0.0f) n = -n;
-    if (n == glm::vec3(0.0f)) n = glm::normalize(outward);
+    // Newell's normal: robust for any planar polygon, even when its first corners are collinear.
+    glm::vec3 newell(0.0f);
+    for (size_t i = 0; i < points.size(); ++i) {
+        const glm::vec3 &a = points[i], &b = points[(i + 1) % points.size()];
+        newell += glm::vec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+    }
+    const bool flip = glm::dot(newell, outward) < 0.0f;
+    const float length = glm::length(newell);
+    const glm::vec3 n = length > 0.0f ? (flip ? -newell : newell) / length : glm::normalize(outward);
     const uint32_t first = static_cast<uint32_t>(vertices_.size());
     for (const glm::vec3& p : points) vertex(p, n, rgba);
-    for (uint32_t i = 1; i + 1 < points.size(); ++i) orientedTriangle(first, first + i, first + i + 1, n);
+    for (uint32_t i = 1; i + 1 < points.size(); ++i) {
+        if (flip)
+            indices_.insert(indices_.end(), {first, first + i + 1, first + i});
+        else
+            indices_.insert(indices_.end(), {first, first + i, first + i + 1});
+    }
 }
 
 void MeshBuilder::quad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d,

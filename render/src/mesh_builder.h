@@ -63,7 +63,10 @@ enum BoxFace : uint32_t {
 
 class MeshBuilder {
 public:
-    explicit MeshBuilder(const glm::vec3& nominalSize) : size_(nominalSize) {}
+    explicit MeshBuilder(const glm::vec3& nominalSize) : size_(nominalSize) {
+        vertices_.reserve(512);
+        indices_.reserve(1536);
+    }
 
     float W() const { return size_.x; }
     float H() const { return size_.y; }

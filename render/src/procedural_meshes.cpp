@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <map>
 
 namespace hexlod::render {
 namespace {
@@ -43,16 +44,29 @@ std::optional<TerminalMesh> buildProceduralMesh(const grammar::ShapeInfo& shape)
     const ShapeGenerator* generator = findGenerator(shape.name);
     if (!generator) return std::nullopt;
     const glm::vec3 nominal = nominalShapeSize(shape.width, shape.height, shape.depthRatio);
-    std::optional<MeshBuilder> best;
-    for (int detail = 0; detail <= generator->maxDetail; ++detail) {
-        MeshBuilder candidate(nominal);
-        generator->build(candidate, detail);
-        const auto miss = [&](const MeshBuilder& b) {
-            return std::llabs(static_cast<long long>(b.triangleCount()) -
-                              static_cast<long long>(shape.triangles));
-        };
-        if (!best || miss(candidate) < miss(*best)) best = std::move(candidate);
+    // Every generator's triangle count grows with its detail level (a test holds them to it),
+    // so the closest level is the first that reaches the declaration or the one before it.
+    // A linear guess from levels 0 and 1 starts the walk, so few levels are ever built.
+    std::map<int, MeshBuilder> built;
+    const auto at = [&](int detail) -> const MeshBuilder& {
+        auto it = built.find(detail);
+        if (it == built.end()) {
+            it = built.emplace(detail, MeshBuilder(nominal)).first;
+            generator->build(it->second, detail);
+        }
+        return it->second;
+    };
+    const auto count = [&](int detail) { return static_cast<long long>(at(detail).triangleCount()); };
+    const long long target = shape.triangles;
+    int detail = 0;
+    if (generator->maxDetail > 0 && count(1) > count(0)) {
+        const long long guess = (target - count(0)) / (count(1) - count(0));
+        detail = static_cast<int>(std::clamp<long long>(guess, 0, generator->maxDetail));
     }
+    while (detail < generator->maxDetail && count(detail) < target) ++detail;
+    while (detail > 0 && count(detail - 1) >= target) --detail;
+    if (detail > 0 && std::llabs(count(detail - 1) - target) <= std::llabs(count(detail) - target)) --detail;
+    const MeshBuilder* best = &at(detail);
     return best->finish(shape.name, "procedural");
 }
 

@@ -17,23 +17,24 @@ uint32_t channel(float v) {
     return static_cast<uint32_t>(std::lround(std::min(v, 1.0f) * 255.0f));
 }
 
-// Eight bytes per step through the splitmix finaliser; the tail is zero-padded. Seeded with the
-// byte count so that meshes that differ only by trailing zeros still differ.
+// Eight bytes per step, one multiply each (a rotate-xor-multiply chain), then the splitmix
+// finaliser for avalanche; the tail is zero-padded and the byte count is mixed in, so meshes
+// that differ only by trailing zeros still differ.
 uint64_t hashBytes(uint64_t key, const void* data, size_t size) {
     const auto* bytes = static_cast<const unsigned char*>(data);
-    key = grammar::combineKey(key, size);
+    uint64_t h = key ^ (size * 0x9e3779b97f4a7c15ull);
     size_t i = 0;
     for (; i + 8 <= size; i += 8) {
         uint64_t word;
         std::memcpy(&word, bytes + i, 8);
-        key = grammar::combineKey(key, word);
+        h = ((h ^ word) << 29 | (h ^ word) >> 35) * 0xff51afd7ed558ccdull;
     }
     if (i < size) {
         uint64_t word = 0;
         std::memcpy(&word, bytes + i, size - i);
-        key = grammar::combineKey(key, word);
+        h = ((h ^ word) << 29 | (h ^ word) >> 35) * 0xff51afd7ed558ccdull;
     }
-    return key;
+    return grammar::mixBits(h);
 }
 
 // Ratio used for an axis whose nominal or scope size is 0: a flat nominal axis carries no

@@ -23,11 +23,11 @@ void limb(MeshBuilder& b, int segments, int rings, float taper, float bumps, uin
 }
 
 void bark(MeshBuilder& b, int detail) {
-    limb(b, 6 + 2 * (detail % 5), 2 + detail / 5, 0.95f, 0.06f, palette::kBark, false);
+    limb(b, 4 + detail, 2 + detail / 4, 0.95f, 0.06f, palette::kBark, false);
 }
 
 void twig(MeshBuilder& b, int detail) {
-    limb(b, 4 + detail % 4, 2 + detail / 4, 0.6f, 0.0f, palette::kBark, true);
+    limb(b, 3 + detail / 2, 2 + detail / 3, 0.6f, 0.0f, palette::kBark, true);
 }
 
 // A pointed leaf folded along its midrib and curling up towards the tip, double-sided.
@@ -71,15 +71,15 @@ void leaf(MeshBuilder& b, int detail) {
 
 void fruit(MeshBuilder& b, int detail) {
     const glm::vec3 size(b.W(), b.H(), b.D());
-    b.sphere(glm::vec3(0.5f * size.x, 0.5f * size.y, 0.0f), 0.48f * size, 4 + detail % 8, 3 + detail / 8,
+    b.sphere(glm::vec3(0.5f * size.x, 0.5f * size.y, 0.0f), 0.48f * size, 4 + detail, 3 + 3 * detail / 4,
              palette::kFruit);
 }
 
 constexpr ShapeGenerator kGenerators[] = {
-    {"bark", 24, bark},
-    {"twig", 23, twig},
+    {"bark", 16, bark},
+    {"twig", 12, twig},
     {"leaf", 12, leaf},
-    {"fruit", 47, fruit},
+    {"fruit", 12, fruit},
 };
 
 } // namespace

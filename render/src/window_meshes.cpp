@@ -163,8 +163,8 @@ void lobbyGlass(MeshBuilder& b, int detail) {
     opening(b, {.surround = 0.0f,
                 .reveal = 0.8f,
                 .frame = 0.02f,
-                .leavesX = 1 + detail / 3,
-                .barsX = 1 + detail % 3,
+                .leavesX = 1,
+                .barsX = 1 + detail,
                 .barsY = 1,
                 .handles = false,
                 .frameRgba = palette::kAluminium});

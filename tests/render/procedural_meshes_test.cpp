@@ -4,6 +4,7 @@
 #include "hexlod/render/procedural_meshes.h"
 #include "hexlod/render/terminal_mesh_library.h"
 #include "mesh_builder.h"
+#include "shape_generators.h"
 
 #include <gtest/gtest.h>
 
@@ -50,6 +51,23 @@ TEST(ProceduralMeshes, EveryShippedShapeHasAGenerator) {
     for (const char* grammar : kShippedGrammars) {
         for (const grammar::ShapeInfo& s : loadGrammar(grammar).shapes)
             EXPECT_TRUE(std::binary_search(names.begin(), names.end(), s.name)) << grammar << " " << s.name;
+    }
+}
+
+// The library stops its search for the declared triangle count at the first level that reaches
+// it, which is only right if no generator loses triangles as its detail grows.
+TEST(ProceduralMeshes, DetailLevelsNeverLoseTriangles) {
+    for (const auto family :
+         {windowGenerators(), facadeGenerators(), towerGenerators(), roofGenerators(), treeGenerators()}) {
+        for (const ShapeGenerator& g : family) {
+            size_t previous = 0;
+            for (int detail = 0; detail <= g.maxDetail; ++detail) {
+                MeshBuilder b(glm::vec3(1.5f, 2.0f, 0.3f));
+                g.build(b, detail);
+                EXPECT_GE(b.triangleCount(), previous) << g.name << " detail " << detail;
+                previous = b.triangleCount();
+            }
+        }
     }
 }
 
