@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 namespace {
@@ -51,7 +52,8 @@ void printMeshTable() {
     for (uint32_t g = 0; g < library.grammarCount(); ++g) {
         for (uint16_t s = 0; s < library.shapeCount(g); ++s) {
             const render::TerminalMesh& m = library.mesh(g, s);
-            std::printf("| %s | %s | %zu | %u | %zu | %zu |\n", grammars[g].name.c_str(), m.shape.c_str(),
+            std::printf("| %s | %s | %zu | %u | %zu | %zu |\n",
+                        std::filesystem::path(grammars[g].name).stem().c_str(), m.shape.c_str(),
                         m.triangleCount(), grammars[g].shapes[s].triangles, m.vertices.size(), m.byteSize());
         }
     }
