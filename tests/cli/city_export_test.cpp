@@ -44,19 +44,35 @@ scene::BuiltScene rowOfBuildings(glm::dvec2 corner, int count) {
     return built;
 }
 
-struct Exported {
+// A scene's catalog with its mesh library.
+struct Prepared {
     cells::BatchCatalog catalog;
     render::TerminalMeshLibrary library;
+
+    explicit Prepared(scene::BuiltScene scene) : catalog(std::move(scene)) {
+        std::vector<const grammar::CompiledGrammar*> grammars;
+        for (uint32_t g = 0; g < catalog.index().grammarCount(); ++g)
+            grammars.push_back(&catalog.grammar(g).grammar);
+        library = render::TerminalMeshLibrary(grammars);
+    }
+};
+
+// An empty folder of its own for one test's files.
+std::string freshDirectory(const std::string& name) {
+    const std::string dir = ::testing::TempDir() + name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+struct Exported : Prepared {
     CityExportReport report;
     tinygltf::Model model;
+    using Prepared::Prepared;
 };
 
 std::unique_ptr<Exported> exportScene(scene::BuiltScene scene, const std::string& name, bool flatten) {
-    auto e = std::make_unique<Exported>(Exported{cells::BatchCatalog(std::move(scene)), {}, {}, {}});
-    std::vector<const grammar::CompiledGrammar*> grammars;
-    for (uint32_t g = 0; g < e->catalog.index().grammarCount(); ++g)
-        grammars.push_back(&e->catalog.grammar(g).grammar);
-    e->library = render::TerminalMeshLibrary(grammars);
+    auto e = std::make_unique<Exported>(std::move(scene));
     CityExportOptions options;
     options.output = ::testing::TempDir() + name;
     options.flatten = flatten;
@@ -210,11 +226,10 @@ TEST(CityExport, FlattenKeepsTheWorldSpaceTriangles) {
 }
 
 TEST(CityExport, RefusesPastItsLimitAndLeavesNothingBehind) {
-    cells::BatchCatalog catalog(rowOfBuildings({0.0, 0.0}, 3));
-    const grammar::CompiledGrammar* grammars[] = {&catalog.grammar(0).grammar};
-    const render::TerminalMeshLibrary library(grammars);
-    const std::string dir = ::testing::TempDir() + "hexlod-export-limit";
-    std::filesystem::create_directories(dir);
+    const Prepared scene(rowOfBuildings({0.0, 0.0}, 3));
+    const cells::BatchCatalog& catalog = scene.catalog;
+    const render::TerminalMeshLibrary& library = scene.library;
+    const std::string dir = freshDirectory("hexlod-export-limit");
     CityExportOptions options;
     options.output = dir + "/city.glb";
     options.maxBytes = 20000;
@@ -233,14 +248,11 @@ TEST(CityExport, RefusesPastItsLimitAndLeavesNothingBehind) {
 }
 
 TEST(CityExport, WritesGltfWithItsBufferBeside) {
-    cells::BatchCatalog catalog(rowOfBuildings({0.0, 0.0}, 2));
-    const grammar::CompiledGrammar* grammars[] = {&catalog.grammar(0).grammar};
-    const render::TerminalMeshLibrary library(grammars);
-    const std::string dir = ::testing::TempDir() + "hexlod-export-gltf";
-    std::filesystem::create_directories(dir);
+    const Prepared scene(rowOfBuildings({0.0, 0.0}, 2));
+    const std::string dir = freshDirectory("hexlod-export-gltf");
     CityExportOptions options;
     options.output = dir + "/city.gltf";
-    const CityExportReport report = exportCityGltf(catalog, library, options);
+    const CityExportReport report = exportCityGltf(scene.catalog, scene.library, options);
     ASSERT_TRUE(report.ok) << report.error;
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
