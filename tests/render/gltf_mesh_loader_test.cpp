@@ -148,6 +148,44 @@ TEST(GltfMeshLoader, ATriangleWithoutNormalsGetsComputedOnes) {
     }
 }
 
+TEST(GltfMeshLoader, VertexColoursOfEveryEncodingTimesTheBaseColour) {
+    // COLOR_0 as normalised unsigned bytes (vec4), normalised unsigned shorts (vec3) and floats
+    // (vec4), each multiplied by the material's baseColorFactor.
+    std::string bytes = floats({0, 0, 0, 2, 0, 0, 0, 3, 1});
+    bytes += std::string("\xff\x00\x80\xff"
+                         "\x00\xff\x00\x80"
+                         "\x40\x40\x40\xff",
+                         12);
+    const uint16_t shorts[9] = {65535, 0, 0, 0, 65535, 0, 0, 0, 65535};
+    bytes += std::string(reinterpret_cast<const char*>(shorts), sizeof(shorts)) + std::string(2, '\0');
+    bytes += floats({0.25f, 0.5f, 1.0f, 1.0f, 1, 1, 1, 1, 0, 0, 0, 1});
+    const std::string json = R"({"asset": {"version": "2.0"},
+        "buffers": [{"byteLength": )" +
+                             std::to_string(bytes.size()) +
+                             R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 12},
+                        {"buffer": 0, "byteOffset": 48, "byteLength": 18}, {"buffer": 0, "byteOffset": 68, "byteLength": 48}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                      {"bufferView": 1, "componentType": 5121, "normalized": true, "count": 3, "type": "VEC4"},
+                      {"bufferView": 2, "componentType": 5123, "normalized": true, "count": 3, "type": "VEC3"},
+                      {"bufferView": 3, "componentType": 5126, "count": 3, "type": "VEC4"}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 1, 1, 1]}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "COLOR_0": 1}, "material": 0},
+                                   {"attributes": {"POSITION": 0, "COLOR_0": 2}},
+                                   {"attributes": {"POSITION": 0, "COLOR_0": 3}}]}]})";
+    const std::string path = writeFile("colours.gltf", json);
+    const GltfLoadResult r = loadGltfMesh(path, "s", glm::vec3(1.0f));
+    ASSERT_TRUE(r.ok) << r.error;
+    ASSERT_EQ(r.mesh.vertices.size(), 9u);
+    const auto colour = [&](size_t i) { return r.mesh.vertices[i].rgba; };
+    EXPECT_EQ(colour(0), packRgba(0.5f, 0.0f, 128.0f / 255.0f, 1.0f)); // red halved by the factor
+    EXPECT_EQ(colour(1), packRgba(0.0f, 1.0f, 0.0f, 128.0f / 255.0f));
+    EXPECT_EQ(colour(3), packRgba(1.0f, 0.0f, 0.0f, 1.0f)); // vec3 gets alpha 1
+    EXPECT_EQ(colour(5), packRgba(0.0f, 0.0f, 1.0f, 1.0f));
+    EXPECT_EQ(colour(6), packRgba(0.25f, 0.5f, 1.0f, 1.0f));
+    EXPECT_EQ(r.mesh.triangleCount(), 3u);
+}
+
 struct BadCase {
     const char* name;
     std::string bytes;
