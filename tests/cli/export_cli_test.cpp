@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 namespace hexlod::test {
@@ -49,6 +50,33 @@ TEST(ExportCli, JsonReportOfOneCellOfTheDefaultCity) {
     for (const auto& [name, count] : j["instances_per_mesh"].items()) perMesh += count.get<uint64_t>();
     EXPECT_EQ(perMesh, j["instances"].get<uint64_t>());
     EXPECT_TRUE(j["mesh_notes"].empty()) << j["mesh_notes"];
+}
+
+TEST(ExportCli, SceneShapesComeFromGltfFilesWithWarningsForBadOnes) {
+    const std::string door = kConfigs + "/../../shared/data/meshes/kenney_platformer_kit/door.glb";
+    const std::string scene = ::testing::TempDir() + "export-shapes.json";
+    std::ofstream(scene) << R"({"name": "shapes", "seed": 2,
+        "grammars": {"residential": {"file": ")" +
+                                kConfigs + R"(/grammars/residential.grammar"}},
+        "buildings": [{"source": "procedural", "count": 6, "districts": [{"grammar": "residential"}]}],
+        "shapes": {"door": {"gltf": ")" +
+                                door + R"("}, "chimney": {"gltf": "/nonexistent/chimney.glb"},
+                   "unicorn": {"gltf": ")" +
+                                door + R"("}}})";
+    const std::string out = ::testing::TempDir() + "export-shapes.glb";
+    const CommandResult r = runHexlod("export --scene " + scene + " -o " + out + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    std::string notes;
+    for (const auto& note : j["mesh_notes"]) notes += note.get<std::string>() + "\n";
+    EXPECT_NE(notes.find("/nonexistent/chimney.glb: no such file; using its procedural mesh"),
+              std::string::npos)
+        << notes;
+    EXPECT_NE(notes.find("shapes.unicorn: no grammar of the scene declares this shape"), std::string::npos)
+        << notes;
+    EXPECT_EQ(notes.find("shape 'door'"), std::string::npos) << notes;
+    EXPECT_NE(r.err.find("chimney.glb"), std::string::npos) << "the notes go to stderr too";
+    EXPECT_GT(j["instances_per_mesh"]["residential/door"].get<uint64_t>(), 0u);
 }
 
 TEST(ExportCli, DispatchesOnTheOutputExtension) {
