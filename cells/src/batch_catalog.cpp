@@ -85,6 +85,16 @@ grammar::TerminalSet BatchCatalog::generate(uint32_t b) const {
 
 grammar::TerminalSet BatchCatalog::generate(uint32_t b, std::span<const grammar::BuildingInput> inputs,
                                             const cache::BatchKey& batchKey) const {
+    return expandSnapshot(b, inputs, batchKey).terminals;
+}
+
+grammar::BatchResult BatchCatalog::expand(uint32_t b) const {
+    const std::vector<grammar::BuildingInput> inputs = inputsOf(b);
+    return expandSnapshot(b, inputs, key(b));
+}
+
+grammar::BatchResult BatchCatalog::expandSnapshot(uint32_t b, std::span<const grammar::BuildingInput> inputs,
+                                                  const cache::BatchKey& batchKey) const {
     const Batch& of = batch(b);
     grammar::BatchInput input;
     input.grammar = &grammar(of.grammar).grammar;
@@ -93,9 +103,9 @@ grammar::TerminalSet BatchCatalog::generate(uint32_t b, std::span<const grammar:
     input.settings.cellOrigin = cellOrigin(of.cell);
     input.cell = {of.cell.q, of.cell.r};
     input.grammarIndex = of.grammar;
-    grammar::TerminalSet set = grammar::expandBatch(input).terminals;
-    set.header.key = batchKey.digest();
-    return set;
+    grammar::BatchResult result = grammar::expandBatch(input);
+    result.terminals.header.key = batchKey.digest();
+    return result;
 }
 
 std::shared_ptr<const grammar::TerminalSet> BatchCatalog::fetch(uint32_t b,

@@ -20,6 +20,7 @@
 #include "hexlod/cache/batch_key.h"
 #include "hexlod/cache/terminal_set_cache.h"
 #include "hexlod/cells/cell_index.h"
+#include "hexlod/grammar/batch_expander.h"
 #include "hexlod/scene/scene_builder.h"
 
 #include <glm/vec3.hpp>
@@ -90,6 +91,9 @@ public:
     std::vector<grammar::BuildingInput> inputsOf(uint32_t batch) const;
     // Expands the batch now (header cell, grammar and key filled) without the cache.
     grammar::TerminalSet generate(uint32_t batch) const;
+    // The whole expansion of the batch now: its terminal set (as generate() fills it), its
+    // extruded set and its issues. For exports and LOD0, which need the base volumes too.
+    grammar::BatchResult expand(uint32_t batch) const;
     // Expands a snapshot taken with inputsOf() under the key the batch had then.
     grammar::TerminalSet generate(uint32_t batch, std::span<const grammar::BuildingInput> inputs,
                                   const cache::BatchKey& key) const;
@@ -117,6 +121,8 @@ private:
 
     grammar::BuildingInput& buildingAt(BuildingRef ref);
     bool select(const Selector& selector, std::vector<BuildingRef>& out, std::string& error) const;
+    grammar::BatchResult expandSnapshot(uint32_t batch, std::span<const grammar::BuildingInput> inputs,
+                                        const cache::BatchKey& key) const;
     cache::BatchKey computeKey(uint32_t batch) const;
     // Recomputes the keys of the batches holding `buildings`; returns those that changed.
     std::vector<KeyChange> rekey(std::span<const SavedParameters> buildings);

@@ -1,0 +1,27 @@
+// Procedural meshes for every terminal shape the shipped grammars declare (windows, doors,
+// mouldings, balconies, roofs, tower cladding, tree parts), built by small parametric
+// generators in unit scope space (terminal_mesh.h).
+#pragma once
+
+#include "hexlod/grammar/compiled_grammar.h"
+#include "hexlod/render/terminal_mesh.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hexlod::render {
+
+// Names of the shapes that have a generator, sorted.
+std::vector<std::string> proceduralShapeNames();
+
+// The mesh of a declared shape at its nominal size, at the generator's detail level whose
+// triangle count is closest to `shape.triangles` (ties go to the coarser level). Empty when no
+// generator has the shape's name.
+std::optional<TerminalMesh> buildProceduralMesh(const grammar::ShapeInfo& shape);
+
+// A box filling the shape's bounds (u, v in [0, 1], t in [0, 1], or a flat quad for a shape of
+// depth 0), magenta, for a shape with neither generator nor glTF mesh; `source` is "fallback".
+TerminalMesh buildFallbackMesh(const grammar::ShapeInfo& shape);
+
+} // namespace hexlod::render

@@ -1,0 +1,76 @@
+// Base volumes from extruded-set elements (base_volume_mesh.h).
+#include "hexlod/render/base_volume_mesh.h"
+
+#include "hexlod/render/polygon.h"
+#include "mesh_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace hexlod::render {
+namespace {
+
+constexpr uint32_t kWallColours[8] = {
+    rgba8(150, 124, 96), rgba8(120, 60, 40),  rgba8(170, 160, 140), rgba8(90, 96, 104),
+    rgba8(140, 110, 80), rgba8(110, 100, 90), rgba8(160, 140, 120), rgba8(70, 70, 75),
+};
+constexpr uint32_t kRoofColour = rgba8(60, 58, 56);
+
+// One storey band of a building: its faces in footprint-edge order.
+void band(MeshBuilder& b, std::vector<const grammar::ExtrudedElement*> faces, float inset, uint32_t wall) {
+    std::sort(faces.begin(), faces.end(), [](const auto* l, const auto* r) { return l->atom < r->atom; });
+    std::vector<glm::vec2> bottom, top;
+    std::vector<float> bottomZ, topZ;
+    for (const grammar::ExtrudedElement* e : faces) {
+        const glm::vec3 up = e->origin + e->axisY * e->size.y;
+        bottom.emplace_back(e->origin);
+        top.emplace_back(up);
+        bottomZ.push_back(e->origin.z);
+        topZ.push_back(up.z);
+    }
+    if (signedArea2(bottom) <= 0.0 || signedArea2(top) <= 0.0) return; // not a closed ring
+    bottom = insetPolygon(bottom, inset);
+    top = insetPolygon(top, inset);
+    const size_t n = bottom.size();
+    for (size_t i = 0; i < n; ++i) {
+        const size_t j = (i + 1) % n;
+        const glm::vec2 edge = bottom[j] - bottom[i];
+        b.quad({bottom[i], bottomZ[i]}, {bottom[j], bottomZ[j]}, {top[j], topZ[j]}, {top[i], topZ[i]},
+               {edge.y, -edge.x, 0.0f}, wall);
+    }
+    const std::vector<uint32_t> triangles = triangulatePolygon(top);
+    for (size_t t = 0; t < triangles.size(); t += 3) {
+        const glm::vec3 tri[3] = {{top[triangles[t]], topZ[triangles[t]]},
+                                  {top[triangles[t + 1]], topZ[triangles[t + 1]]},
+                                  {top[triangles[t + 2]], topZ[triangles[t + 2]]}};
+        b.polygon(tri, {0, 0, 1}, kRoofColour);
+    }
+}
+
+} // namespace
+
+uint32_t wallMaterialColour(uint16_t material) {
+    return kWallColours[material % 8];
+}
+
+TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset) {
+    MeshBuilder b(glm::vec3(1.0f)); // metres stay metres
+    for (const grammar::ExtrudedBuilding& building : set.buildings) {
+        // Bands keyed by stop rule and elevation in millimetres.
+        std::map<std::pair<uint32_t, long long>, std::vector<const grammar::ExtrudedElement*>> bands;
+        for (uint32_t i = 0; i < building.elementCount; ++i) {
+            const grammar::ExtrudedElement& e = set.elements.at(building.firstElement + i);
+            if (!(e.size.y > 0.0f) || !(e.size.x > 0.0f) || !std::isfinite(e.origin.z)) continue;
+            bands[{e.rule, std::llround(double(e.origin.z) * 1000.0)}].push_back(&e);
+        }
+        for (auto& [key, faces] : bands) {
+            if (faces.size() >= 3)
+                band(b, std::move(faces), inset, wallMaterialColour(building.wallMaterial));
+        }
+    }
+    return b.finish("base_volume", "extruded set");
+}
+
+} // namespace hexlod::render
