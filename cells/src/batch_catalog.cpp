@@ -93,14 +93,20 @@ grammar::BatchResult BatchCatalog::expand(uint32_t b) const {
     return expandSnapshot(b, inputs, key(b));
 }
 
+grammar::ExtrudedSet BatchCatalog::expandExtruded(uint32_t b) const {
+    const std::vector<grammar::BuildingInput> inputs = inputsOf(b);
+    return expandSnapshot(b, inputs, key(b), true).extruded;
+}
+
 grammar::BatchResult BatchCatalog::expandSnapshot(uint32_t b, std::span<const grammar::BuildingInput> inputs,
-                                                  const cache::BatchKey& batchKey) const {
+                                                  const cache::BatchKey& batchKey, bool extrudedOnly) const {
     const Batch& of = batch(b);
     grammar::BatchInput input;
     input.grammar = &grammar(of.grammar).grammar;
     input.buildings = inputs;
     input.settings.seed = scene_.config.seed;
     input.settings.cellOrigin = cellOrigin(of.cell);
+    input.settings.extrudedOnly = extrudedOnly;
     input.cell = {of.cell.q, of.cell.r};
     input.grammarIndex = of.grammar;
     grammar::BatchResult result = grammar::expandBatch(input);

@@ -351,6 +351,7 @@ struct BuildingExpander::Impl {
         const CompiledRule& rule = grammar.rules[r];
         if (rule.extrudedStop && !item.belowStop) {
             recordElement(item.scope, r);
+            if (settings.extrudedOnly) return;
             item.belowStop = true;
         }
         const Scope& s = item.scope;

@@ -258,5 +258,26 @@ TEST_F(BatchCatalogTest, GeneratedTerminalsAreRelativeToTheCellCentre) {
     EXPECT_EQ(checked, 6u);
 }
 
+TEST_F(BatchCatalogTest, ExtrudedOnlyExpansionGivesTheSameBaseVolumes) {
+    for (uint32_t b = 0; b < catalog_.batchCount(); b += 5) {
+        const grammar::ExtrudedSet whole = catalog_.expand(b).extruded;
+        const grammar::ExtrudedSet alone = catalog_.expandExtruded(b);
+        ASSERT_EQ(alone.buildings.size(), whole.buildings.size()) << "batch " << b;
+        ASSERT_EQ(alone.elements.size(), whole.elements.size()) << "batch " << b;
+        for (size_t i = 0; i < whole.buildings.size(); ++i) {
+            EXPECT_EQ(alone.buildings[i].building, whole.buildings[i].building);
+            EXPECT_EQ(alone.buildings[i].height, whole.buildings[i].height);
+            EXPECT_EQ(alone.buildings[i].vertexCount, whole.buildings[i].vertexCount);
+        }
+        for (size_t i = 0; i < whole.elements.size(); ++i) {
+            EXPECT_EQ(alone.elements[i].origin, whole.elements[i].origin);
+            EXPECT_EQ(alone.elements[i].size, whole.elements[i].size);
+            EXPECT_EQ(alone.elements[i].rule, whole.elements[i].rule);
+        }
+        EXPECT_EQ(alone.footprints, whole.footprints);
+        EXPECT_EQ(alone.parameters, whole.parameters);
+    }
+}
+
 } // namespace
 } // namespace hexlod::cells

@@ -94,6 +94,8 @@ public:
     // The whole expansion of the batch now: its terminal set (as generate() fills it), its
     // extruded set and its issues. For exports and LOD0, which need the base volumes too.
     grammar::BatchResult expand(uint32_t batch) const;
+    // The batch's extruded set alone, expanding no further than its stop rules (LOD0, LOD1).
+    grammar::ExtrudedSet expandExtruded(uint32_t batch) const;
     // Expands a snapshot taken with inputsOf() under the key the batch had then.
     grammar::TerminalSet generate(uint32_t batch, std::span<const grammar::BuildingInput> inputs,
                                   const cache::BatchKey& key) const;
@@ -122,7 +124,7 @@ private:
     grammar::BuildingInput& buildingAt(BuildingRef ref);
     bool select(const Selector& selector, std::vector<BuildingRef>& out, std::string& error) const;
     grammar::BatchResult expandSnapshot(uint32_t batch, std::span<const grammar::BuildingInput> inputs,
-                                        const cache::BatchKey& key) const;
+                                        const cache::BatchKey& key, bool extrudedOnly = false) const;
     cache::BatchKey computeKey(uint32_t batch) const;
     // Recomputes the keys of the batches holding `buildings`; returns those that changed.
     std::vector<KeyChange> rekey(std::span<const SavedParameters> buildings);

@@ -29,6 +29,9 @@ struct ExpansionSettings {
     uint64_t seed = 0;          // scene seed
     glm::dvec3 cellOrigin{0.0}; // terminal positions are relative to it
     ExpansionLimits limits;
+    // Stop at the extruded set: scopes entering a stop rule are recorded and go no further, so
+    // LOD0 and LOD1 cells get their base volumes for the cost of the first rules only.
+    bool extrudedOnly = false;
 };
 
 struct BuildingInput {
