@@ -4,6 +4,7 @@
 #include "expand_command.h"
 #include "export_command.h"
 #include "import_command.h"
+#include "walk_command.h"
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +22,8 @@ int main(int argc, char** argv) {
     CLI::App* cellsCommand = hexlod::apps::registerCellsCommand(app, cells);
     hexlod::apps::ExportOptions exportOptions;
     CLI::App* exportCommand = hexlod::apps::registerExportCommand(app, exportOptions);
+    hexlod::apps::WalkOptions walk;
+    CLI::App* walkCommand = hexlod::apps::registerWalkCommand(app, walk);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -29,6 +32,7 @@ int main(int argc, char** argv) {
     if (expandCommand->parsed()) return hexlod::apps::runExpandCommand(expand);
     if (importCommand->parsed()) return hexlod::apps::runImportCommand(import);
     if (cellsCommand->parsed()) return hexlod::apps::runCellsCommand(cells);
+    if (walkCommand->parsed()) return hexlod::apps::runWalkCommand(walk);
     if (exportCommand->parsed()) return hexlod::apps::runExportCommand(exportOptions);
     return 0;
 }

@@ -1,7 +1,7 @@
 // Impostor baking: every view of a layout rendered in one framebuffer, one viewport per tile.
 #include "hexlod/impostor/impostor_baker.h"
 #include "hexlod/render/gl_api.h"
-#include "hexlod/render/gpu_types.h"
+#include "hexlod/render/mesh_vertex_format.h"
 #include "hexlod/render/render_shaders.h"
 
 #include <Imath/half.h>
@@ -179,16 +179,7 @@ struct ImpostorBaker::Upload {
         gl::glCreateVertexArrays(1, &vao);
         gl::glVertexArrayVertexBuffer(vao, 0, buffers[0], 0, sizeof(render::MeshVertex));
         gl::glVertexArrayElementBuffer(vao, buffers[1]);
-        auto attribute = [this](GLuint location, GLint components, GLenum type, GLboolean normalized,
-                                GLuint offset) {
-            gl::glEnableVertexArrayAttrib(vao, location);
-            gl::glVertexArrayAttribFormat(vao, location, components, type, normalized, offset);
-            gl::glVertexArrayAttribBinding(vao, location, 0);
-        };
-        attribute(HEXLOD_ATTRIBUTE_POSITION, 3, GL_FLOAT, GL_FALSE, offsetof(render::MeshVertex, position));
-        attribute(HEXLOD_ATTRIBUTE_NORMAL, 3, GL_FLOAT, GL_FALSE, offsetof(render::MeshVertex, normal));
-        attribute(HEXLOD_ATTRIBUTE_UV, 2, GL_FLOAT, GL_FALSE, offsetof(render::MeshVertex, uv));
-        attribute(HEXLOD_ATTRIBUTE_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(render::MeshVertex, rgba));
+        render::setMeshVertexFormat(vao, 0);
     }
     ~Upload() {
         gl::glDeleteVertexArrays(1, &vao);

@@ -31,9 +31,9 @@ void main() {
     uint lod = classifyTerminal(t, corner, frame, info.z != 0u, transition);
     if (lod == HEXLOD_CULLED) return;
     // Draw lists carry the camera-relative corner, the global shape id and, in place of the
-    // building id, the transition factor.
+    // building id, the transition factor (-1 marks LOD2, which has none).
     t.position = corner;
-    t.building = floatBitsToUint(transition);
+    t.building = floatBitsToUint(lod == HEXLOD_LOD2 ? -1.0 : transition);
     t.shapeAndDepth = (t.shapeAndDepth & 0xffff0000u) | shape;
     if (lod == HEXLOD_LOD4) {
         lists[info.x + atomicAdd(counters[shape].x, 1u)] = t;

@@ -25,7 +25,7 @@ CullResult cullOnCpu(const CullInputs& inputs) {
                 continue;
             }
             t.position = corner;
-            t.building = std::bit_cast<uint32_t>(transition);
+            t.building = std::bit_cast<uint32_t>(lod == HEXLOD_LOD2 ? -1.0f : transition);
             t.shapeAndDepth = (t.shapeAndDepth & 0xffff0000u) | shape;
             ++result.terminalsPerLod[lod];
             (lod == HEXLOD_LOD4 ? result.lod4 : result.impostor)[shape].push_back({t, lod});

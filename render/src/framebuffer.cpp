@@ -108,12 +108,11 @@ void Framebuffer::bind() const {
     gl::glViewport(0, 0, GLsizei(desc_.width), GLsizei(desc_.height));
 }
 
-void Framebuffer::clear(float r, float g, float b, float a) const {
+void Framebuffer::clear(float r, float g, float b, float a, float depth) const {
     const float color[4] = {r, g, b, a};
     for (size_t i = 0; i < colors_.size(); ++i) gl::glClearNamedFramebufferfv(id_, GL_COLOR, GLint(i), color);
     if (depth_) {
-        const float one = 1.0f;
-        gl::glClearNamedFramebufferfv(id_, GL_DEPTH, 0, &one);
+        gl::glClearNamedFramebufferfv(id_, GL_DEPTH, 0, &depth);
     }
 }
 

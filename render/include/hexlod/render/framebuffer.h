@@ -30,8 +30,8 @@ public:
 
     // Binds for drawing and sets the viewport to the whole target.
     void bind() const;
-    // Clears every colour attachment to `color` and depth to 1.
-    void clear(float r, float g, float b, float a) const;
+    // Clears every colour attachment to `color` and depth to `depth` (0 for reversed-Z).
+    void clear(float r, float g, float b, float a, float depth = 1.0f) const;
     // Clears one colour attachment, leaving the others and depth alone.
     void clearAttachment(uint32_t attachment, float r, float g, float b, float a) const;
 

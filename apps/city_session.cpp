@@ -1,0 +1,100 @@
+#include "city_session.h"
+
+#include "hexlod/scene/scene_builder.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+namespace hexlod::apps {
+
+uint64_t peakRssBytes() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024; // reported in kB
+    }
+    return 0;
+}
+
+int openCity(const std::string& command, const std::string& scenePath, CitySession& out) {
+    std::string error;
+    if (!scene::loadSceneConfig(scenePath, out.config, error)) {
+        std::cerr << "hexlod " << command << ": " << error << "\n";
+        return 2;
+    }
+    scene::BuiltScene built;
+    if (!scene::buildScene(out.config, built, error)) {
+        std::cerr << "hexlod " << command << ": " << error << "\n";
+        return 2;
+    }
+    out.notes = built.notes;
+    if (built.treeGrammars.empty()) out.notes.push_back("vegetation: off (no trees)");
+    try {
+        out.catalog = std::make_unique<cells::BatchCatalog>(std::move(built));
+    } catch (const std::exception& e) {
+        std::cerr << "hexlod " << command << ": " << out.config.file << ": " << e.what() << "\n";
+        return 1;
+    }
+    cache::CacheOptions caching;
+    caching.memoryBudgetBytes = out.config.cache.memoryBytes;
+    caching.diskBudgetBytes = out.config.cache.diskBytes;
+    caching.diskPath = out.config.cache.diskPath;
+    try {
+        out.cache = std::make_unique<cache::TerminalSetCache>(caching);
+    } catch (const std::exception& e) {
+        std::cerr << "hexlod " << command << ": cache.disk_path: " << e.what() << "\n";
+        return 2;
+    }
+    std::vector<const grammar::CompiledGrammar*> grammars;
+    for (uint32_t g = 0; g < out.catalog->index().grammarCount(); ++g)
+        grammars.push_back(&out.catalog->grammar(g).grammar);
+    std::vector<render::GltfShapeSource> sources;
+    for (const scene::ShapeSource& s : out.config.shapes) sources.push_back({s.shape, s.gltf});
+    out.meshes = std::make_unique<render::TerminalMeshLibrary>(grammars, sources);
+    for (const std::string& note : out.meshes->notes()) out.notes.push_back("meshes: " + note);
+    return 0;
+}
+
+int openRenderer(const std::string& command, const RenderSetup& setup, CitySession& session) {
+    render::GlContextResult gl = render::createGlContext({setup.backend, true});
+    if (!gl.context) {
+        std::cerr << "hexlod " << command << ": " << gl.error() << "\n";
+        return 1;
+    }
+    session.gl = std::move(gl.context);
+    const render::GlContextInfo& info = session.gl->info();
+    session.notes.push_back(std::string("gl: ") + render::glBackendName(info.backend) + ", " + info.renderer +
+                            ", " + info.version +
+                            (info.software ? " (software: frame times are not GPU figures)" : ""));
+    if (!setup.impostors) {
+        session.notes.push_back("impostors: off (every terminal draws at LOD4)");
+        return 0;
+    }
+    lod::SceneImpostorOptions options;
+    options.facadeLayout = {impostor::ViewSphere::Hemisphere, setup.impostorGrid, setup.impostorResolution,
+                            2};
+    options.treeLayout = {impostor::ViewSphere::FullSphere, setup.impostorGrid, setup.impostorResolution, 2};
+    options.storeDirectory = setup.impostorStore;
+    if (setup.progress) {
+        options.progress = [](size_t done, size_t total, const std::string& name) {
+            const int width = 30, filled = int(width * done / std::max<size_t>(total, 1));
+            std::fprintf(stderr, "\rbaking [%.*s%*s] %zu/%zu %-24.24s", filled,
+                         "==============================", width - filled, "", done, total, name.c_str());
+            if (done == total) std::fputc('\n', stderr);
+        };
+    }
+    std::string error;
+    if (!lod::bakeSceneImpostors(session.catalog->scene(), *session.meshes, options, session.impostors,
+                                 session.impostorReport, error)) {
+        std::cerr << "hexlod " << command << ": impostors: " << error << "\n";
+        return 1;
+    }
+    session.notes.push_back(session.impostorReport.summary());
+    for (const lod::BakedShapeReport& shape : session.impostorReport.shapes) {
+        if (!shape.note.empty()) session.notes.push_back("impostors: " + shape.name + ": " + shape.note);
+    }
+    return 0;
+}
+
+} // namespace hexlod::apps

@@ -1,0 +1,107 @@
+#include "walk_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <functional>
+
+namespace hexlod::apps {
+
+double percentile(std::vector<double> values, double q) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    return values[size_t(std::lround(q * double(values.size() - 1)))];
+}
+
+double median(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+nlohmann::json frameJson(const lod::FrameStats& f) {
+    return {
+        {"frame", f.frame},
+        {"frame_ms", f.frameMs},
+        {"schedule_ms", f.scheduleMs},
+        {"generation_ms", f.generationMs},
+        {"upload_ms", f.uploadMs},
+        {"cull_ms", f.cullMs},
+        {"draw_ms", f.drawMs},
+        {"gpu_wait_ms", f.gpuWaitMs},
+        {"triangles", f.triangles},
+        {"draws", f.draws},
+        {"terminals_per_lod",
+         {{"lod2", f.terminalsPerLod[2]}, {"lod3", f.terminalsPerLod[3]}, {"lod4", f.terminalsPerLod[4]}}},
+        {"cells_per_lod",
+         {{"lod0", f.cellsPerLod[0]}, {"lod1", f.cellsPerLod[1]}, {"terminal_sets", f.cellsPerLod[4]}}},
+        {"visible_cells", f.visibleCells},
+        {"batches_drawn", f.batchesDrawn},
+        {"batches_pending", f.batchesPending},
+        {"batches_rejected", f.batchesRejected},
+        {"cache_bytes", f.cacheBytes},
+        {"gpu_bytes", f.gpuBytes},
+        {"impostor_bytes", f.impostorBytes},
+        {"resident_bytes", f.residentBytes()}};
+}
+
+bool writeFramesCsv(const std::string& path, const std::vector<lod::FrameStats>& frames, std::string& error) {
+    std::ofstream out(path);
+    out << "frame,frame_ms,schedule_ms,generation_ms,upload_ms,cull_ms,draw_ms,gpu_wait_ms,triangles,draws,"
+           "lod2_terminals,lod3_terminals,lod4_terminals,lod0_cells,lod1_cells,terminal_set_cells,visible_"
+           "cells,"
+           "cache_bytes,gpu_bytes,impostor_bytes,resident_bytes\n";
+    for (const lod::FrameStats& f : frames) {
+        out << f.frame << ',' << f.frameMs << ',' << f.scheduleMs << ',' << f.generationMs << ','
+            << f.uploadMs << ',' << f.cullMs << ',' << f.drawMs << ',' << f.gpuWaitMs << ',' << f.triangles
+            << ',' << f.draws << ',' << f.terminalsPerLod[2] << ',' << f.terminalsPerLod[3] << ','
+            << f.terminalsPerLod[4] << ',' << f.cellsPerLod[0] << ',' << f.cellsPerLod[1] << ','
+            << f.cellsPerLod[4] << ',' << f.visibleCells << ',' << f.cacheBytes << ',' << f.gpuBytes << ','
+            << f.impostorBytes << ',' << f.residentBytes() << '\n';
+    }
+    if (!out) {
+        error = path + ": cannot write";
+        return false;
+    }
+    return true;
+}
+
+nlohmann::json summarizeFrames(const std::vector<lod::FrameStats>& frames) {
+    auto column = [&](const std::function<double(const lod::FrameStats&)>& get) {
+        std::vector<double> values;
+        for (const lod::FrameStats& f : frames) values.push_back(get(f));
+        return values;
+    };
+    uint64_t peak = 0;
+    for (const lod::FrameStats& f : frames) peak = std::max(peak, f.residentBytes());
+    const auto frameMs = column([](const auto& f) { return f.frameMs; });
+    return {{"frames", frames.size()},
+            {"median_frame_ms", median(frameMs)},
+            {"p95_frame_ms", percentile(frameMs, 0.95)},
+            {"median_triangles", median(column([](const auto& f) { return double(f.triangles); }))},
+            {"median_draws", median(column([](const auto& f) { return double(f.draws); }))},
+            {"terminals_per_lod",
+             {{"lod2", median(column([](const auto& f) { return double(f.terminalsPerLod[2]); }))},
+              {"lod3", median(column([](const auto& f) { return double(f.terminalsPerLod[3]); }))},
+              {"lod4", median(column([](const auto& f) { return double(f.terminalsPerLod[4]); }))}}},
+            {"cells_per_lod",
+             {{"lod0", median(column([](const auto& f) { return double(f.cellsPerLod[0]); }))},
+              {"lod1", median(column([](const auto& f) { return double(f.cellsPerLod[1]); }))},
+              {"terminal_sets", median(column([](const auto& f) { return double(f.cellsPerLod[4]); }))}}},
+            {"median_stage_ms",
+             {{"schedule", median(column([](const auto& f) { return f.scheduleMs; }))},
+              {"upload", median(column([](const auto& f) { return f.uploadMs; }))},
+              {"cull", median(column([](const auto& f) { return f.cullMs; }))},
+              {"draw", median(column([](const auto& f) { return f.drawMs; }))},
+              {"gpu_wait", median(column([](const auto& f) { return f.gpuWaitMs; }))}}},
+            {"total_generation_ms",
+             [&] {
+                 double total = 0.0;
+                 for (const auto& f : frames) total += f.generationMs;
+                 return total;
+             }()},
+            {"peak_resident_bytes", peak}};
+}
+
+} // namespace hexlod::apps

@@ -1,0 +1,109 @@
+// One frame of the city (thesis §7.3-7.5; ARCHITECTURE.md §5, §6), in order:
+//   1. per cell on the CPU: frustum culling and the cell's LOD (terminal set or extruded set)
+//      through the scheduler, which also generates the batches a frame needs;
+//   2. upload: newly ready terminal sets into the paged terminal arena;
+//   3. one compute pass over every terminal of the resident batches in view: frustum and
+//      backface culling, LOD4/LOD3/LOD2 by screen-space error, compacted draw lists;
+//   4. draws: LOD4 meshes instanced from the lists (per-instance attributes), LOD3/LOD2
+//      impostor boxes ray-cast into their shapes' views, base volumes (LOD0 with a wall
+//      texture; plain shells under terminals).
+// Everything is camera-relative: cell origins minus the camera are taken in double and only
+// then rounded to float. Depth is reversed-Z in a float buffer, so near 1e-4 m and far 1e7 m
+// keep their precision. Needs a current GL context.
+#pragma once
+
+#include "hexlod/cache/terminal_set_cache.h"
+#include "hexlod/cells/scheduler.h"
+#include "hexlod/impostor/impostor_textures.h"
+#include "hexlod/lod/gpu_cull.h"
+#include "hexlod/lod/ground_pass.h"
+#include "hexlod/lod/scene_impostors.h"
+#include "hexlod/lod/shape_table.h"
+#include "hexlod/lod/terminal_arena.h"
+#include "hexlod/lod/volume_cache.h"
+#include "hexlod/render/framebuffer.h"
+#include "hexlod/scene/camera_path.h"
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace hexlod::lod {
+
+// Lod: the LOD system. The others force one LOD on everything in view, for the error reports;
+// AllLod4 is their reference.
+enum class RenderMode : uint8_t { Lod, AllLod4, AllLod3, AllLod2, AllLod1, AllLod0 };
+const char* renderModeName(RenderMode mode); // "lod", "lod4", "lod3", ...
+bool parseRenderMode(std::string_view name, RenderMode& out);
+
+struct CityRendererOptions {
+    uint32_t width = 1280, height = 720;
+    RenderMode mode = RenderMode::Lod;
+    scene::LodProfile lod;
+    uint64_t arenaRecords = uint64_t(1) << 23;        // 8 M terminals, 256 MiB
+    uint64_t volumeBudgetBytes = uint64_t(256) << 20; // base volume meshes
+    double transitionBand = 0.15;                     // share of each LOD's range that blends into the next
+    uint32_t parallaxIterations = 2;                  // LOD3
+    double treeTerminalDistance = 250.0;              // trees farther away are billboards
+    uint32_t schedulerWorkers = 0;   // 0: batches are generated in the frame that needs them (deterministic)
+    uint32_t maxBatchesPerFrame = 0; // 0: no cap
+};
+
+struct FrameStats {
+    uint64_t frame = 0;
+    // CPU milliseconds per stage; frameMs is the whole frame's wall time, GPU work included
+    // (timer queries read 0 on llvmpipe, so the frame ends with glFinish).
+    double scheduleMs = 0.0, generationMs = 0.0, uploadMs = 0.0, cullMs = 0.0, drawMs = 0.0, gpuWaitMs = 0.0,
+           frameMs = 0.0;
+    uint64_t triangles = 0, draws = 0;
+    std::array<uint64_t, 5> terminalsPerLod{}; // LOD2..LOD4 drawn terminals (0 and 1 unused)
+    std::array<uint32_t, 5> cellsPerLod{};     // cells in view: 0 and 1 extruded, 4 with terminal sets
+    uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
+    uint64_t cacheBytes = 0;    // terminal sets in the cache's memory tier
+    uint64_t gpuBytes = 0;      // arena, draw lists, meshes, base volumes, frame target
+    uint64_t impostorBytes = 0; // impostor textures
+    uint64_t residentBytes() const { return cacheBytes + gpuBytes + impostorBytes; }
+};
+
+class CityRenderer {
+public:
+    // `impostors` may be null (no impostors: every terminal draws at LOD4). The catalog, cache,
+    // meshes and impostors must outlive the renderer.
+    CityRenderer(cells::BatchCatalog& catalog, cache::TerminalSetCache& cache,
+                 const render::TerminalMeshLibrary& meshes, const SceneImpostors* impostors,
+                 CityRendererOptions options);
+    ~CityRenderer();
+
+    bool init(std::string& error);
+    FrameStats render(const scene::CameraPose& pose, double timeSeconds, double nearPlane, double farPlane);
+    render::Image readColor() const { return target_.readColor(0); }
+    const CityRendererOptions& options() const { return options_; }
+
+private:
+    struct Programs;
+    void drawTerminals(FrameStats& stats);
+    void drawVolumes(const std::vector<std::pair<const VolumeMesh*, bool>>& volumes, const glm::dvec3& camera,
+                     FrameStats& stats);
+
+    cells::BatchCatalog& catalog_;
+    cache::TerminalSetCache& cache_;
+    const render::TerminalMeshLibrary& meshes_;
+    const SceneImpostors* impostors_;
+    CityRendererOptions options_;
+    std::unique_ptr<cells::Scheduler> scheduler_;
+    std::unique_ptr<Programs> programs_;
+    render::Framebuffer target_;
+    TerminalArena arena_;
+    GpuCull cull_;
+    ShapeTable shapes_;
+    VolumeCache volumes_;
+    GroundPass ground_;
+    impostor::ImpostorTextures impostorTextures_;
+    uint32_t sphereBuffer_ = 0, frameBuffer_ = 0, lod4Vao_ = 0, impostorVao_ = 0;
+    uint32_t centralView_ = 0;
+    uint64_t frame_ = 0;
+};
+
+} // namespace hexlod::lod

@@ -1,0 +1,56 @@
+// Every terminal shape of a scene on the GPU, under one global index (shapeBase of its grammar
+// + its shape id): the meshes of the mesh library in one vertex and one index buffer, and per
+// shape what the draw passes need (nominal size, mesh bounds, impostor layer).
+#pragma once
+
+#include "hexlod/lod/gpu_cull.h"
+#include "hexlod/render/terminal_mesh_library.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace hexlod::lod {
+
+// Per global shape, as the draw passes read it (std430, three vec4).
+struct GpuShape {
+    glm::vec4 nominalSize; // xyz: (W, H, D) the normals are metric at; w: impostor layer, -1 none
+    glm::vec4 boundsMin;   // unit scope space
+    glm::vec4 boundsMax;
+};
+
+class ShapeTable {
+public:
+    ShapeTable() = default;
+    ~ShapeTable();
+    ShapeTable(const ShapeTable&) = delete;
+    ShapeTable& operator=(const ShapeTable&) = delete;
+
+    // Uploads every mesh of `library` (grammars in the scene's order) once.
+    void upload(const render::TerminalMeshLibrary& library);
+    // Records which impostor layer serves a global shape (-1: none, it always draws at LOD4).
+    void setImpostorLayer(uint32_t shape, int layer);
+    // Sends the per-shape table to the GPU; call after the layers are set.
+    void commit();
+
+    uint32_t shapeCount() const { return uint32_t(shapes_.size()); }
+    uint32_t shapeBase(uint32_t grammar) const { return bases_.at(grammar); }
+    const std::vector<MeshDrawInfo>& meshes() const { return draws_; }
+    const std::vector<GpuShape>& shapes() const { return shapes_; }
+    std::vector<uint8_t> impostorFlags() const;
+    uint32_t triangles(uint32_t shape) const { return draws_.at(shape).indexCount / 3; }
+
+    uint32_t vertexBuffer() const { return vertices_; }
+    uint32_t indexBuffer() const { return indices_; }
+    uint32_t shapeBuffer() const { return table_; }
+    uint64_t byteSize() const { return bytes_; }
+
+private:
+    std::vector<uint32_t> bases_;
+    std::vector<MeshDrawInfo> draws_;
+    std::vector<GpuShape> shapes_;
+    uint32_t vertices_ = 0, indices_ = 0, table_ = 0;
+    uint64_t bytes_ = 0;
+};
+
+} // namespace hexlod::lod

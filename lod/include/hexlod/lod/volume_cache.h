@@ -1,0 +1,52 @@
+// Base volumes on the GPU (LOD0, and the shells under LOD2-4 terminals): per batch, the
+// extruded set's buildings as one mesh in cell-local metres, built on first use and kept
+// within a byte budget, least recently drawn first out.
+#pragma once
+
+#include "hexlod/cells/batch_catalog.h"
+
+#include <cstdint>
+#include <unordered_map>
+
+namespace hexlod::lod {
+
+struct VolumeMesh {
+    uint32_t vao = 0, vertexBuffer = 0, indexBuffer = 0;
+    uint32_t indexCount = 0;
+    uint64_t bytes = 0;
+    glm::dvec3 cellOrigin{0.0};
+    uint64_t lastUsed = 0;
+};
+
+struct VolumeStats {
+    uint32_t built = 0;   // since the last beginFrame()
+    double buildMs = 0.0; // since the last beginFrame(): expansion and upload
+    uint64_t residentBytes = 0;
+    uint32_t resident = 0;
+};
+
+class VolumeCache {
+public:
+    VolumeCache(const cells::BatchCatalog& catalog, uint64_t budgetBytes)
+        : catalog_(catalog), budget_(budgetBytes) {}
+    ~VolumeCache();
+    VolumeCache(const VolumeCache&) = delete;
+    VolumeCache& operator=(const VolumeCache&) = delete;
+
+    void beginFrame(uint64_t frame);
+    // The batch's base volumes, walls set `inset` metres inwards (0 for LOD0). Valid until the
+    // next acquire() or beginFrame().
+    const VolumeMesh& acquire(uint32_t batch, float inset);
+    VolumeStats stats() const;
+
+private:
+    void evict();
+
+    const cells::BatchCatalog& catalog_;
+    uint64_t budget_;
+    uint64_t frame_ = 0;
+    std::unordered_map<uint64_t, VolumeMesh> meshes_; // by batch key digest and inset
+    VolumeStats stats_;
+};
+
+} // namespace hexlod::lod

@@ -1,0 +1,77 @@
+#version 450 core
+// Ray-casts one terminal's impostor: the pixel's view ray is carried into the shape's nominal
+// space (undoing the scope's stretch), then LOD3 blends the four nearest views with parallax
+// correction and LOD2 maps the central view onto the wall plane; the LOD3 -> LOD2 transition
+// mixes the two. The surface found writes its own depth, so impostors and geometry intersect
+// correctly.
+#include "frame.glsl"
+
+uniform sampler2DArray impostorAlbedo, impostorNormalDepth;
+uniform usampler2D impostorTableViews;
+uniform sampler2D impostorTableWeights;
+uniform uvec4 impostorLayout;
+#include "impostor_views.glsl"
+
+uniform uint centralView;        // the view nearest the wall's normal
+uniform uint parallaxIterations; // LOD3
+
+layout(std430, binding = 8) readonly buffer ShapeBuffer { GpuShape shapes[]; };
+layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; }; // per layer: centre, radius
+
+in vec3 vPosition;
+flat in vec3 vCorner, vAxisX, vAxisY, vAxisZ, vScope;
+flat in uint vShape;
+flat in float vTransition;
+layout(location = 0) out vec4 colour;
+
+// Scope-relative metres to the shape's nominal metres, per axis (a flat axis stays flat).
+vec3 toNominal(vec3 local, vec3 nominal) {
+    vec3 unit = vec3(local.x / vScope.x, local.y / vScope.y, vScope.z > 0.0 ? local.z / vScope.z : 0.0);
+    return unit * nominal;
+}
+
+void main() {
+    GpuShape shape = shapes[vShape];
+    uint layer = uint(shape.nominalSize.w);
+    vec4 sphere = spheres[layer];
+    mat3 toScope = transpose(mat3(vAxisX, vAxisY, vAxisZ));
+    vec3 entry = toNominal(toScope * (vPosition - vCorner), shape.nominalSize.xyz);
+    vec3 direction = toNominal(toScope * normalize(vPosition), shape.nominalSize.xyz);
+    vec3 forward = -normalize(direction);
+    vec3 q = (entry - sphere.xyz) / sphere.w;
+    vec3 rayOrigin = q - dot(q, forward) * forward;
+
+    // LOD2: the central view, sampled where the ray meets the wall plane (z = 0 nominal).
+    float blend = vTransition < 0.0 ? 1.0 : vTransition;
+    vec4 albedo = vec4(0.0), normalDepth = vec4(0.0, 0.0, 0.0, -1.0);
+    if (blend > 0.0) {
+        vec3 viewForward = impostorViewDirection(centralView), right, up;
+        impostorBasis(viewForward, impostorLayout.w, right, up);
+        float along = abs(direction.z) > 1e-6 ? -entry.z / direction.z : 0.0;
+        vec3 onWall = (entry + along * direction - sphere.xyz) / sphere.w;
+        vec2 uv = vec2(dot(onWall, right), dot(onWall, up));
+        albedo = impostorSample(impostorAlbedo, layer, centralView, uv);
+        normalDepth = vec4(impostorSample(impostorNormalDepth, layer, centralView, uv).xyz, dot(onWall - rayOrigin, forward));
+    }
+    if (blend < 1.0) {
+        uvec4 views;
+        vec4 weights;
+        impostorViews(forward, views, weights);
+        vec4 nd;
+        vec4 a = impostorReconstruct(layer, rayOrigin, forward, views, weights, parallaxIterations, nd);
+        albedo = mix(a, albedo, blend);
+        normalDepth = blend > 0.0 ? mix(nd, normalDepth, blend) : nd;
+    }
+    if (albedo.a < 0.5) discard;
+
+    // The surface back in camera-relative world space, for lighting, fog and depth.
+    vec3 surfaceNominal = sphere.xyz + sphere.w * (rayOrigin + normalDepth.w * forward);
+    vec3 nominal = shape.nominalSize.xyz;
+    vec3 unit = vec3(surfaceNominal.x / nominal.x, surfaceNominal.y / nominal.y,
+                     nominal.z > 0.0 ? surfaceNominal.z / nominal.z : 0.0);
+    vec3 world = vCorner + vAxisX * (unit.x * vScope.x) + vAxisY * (unit.y * vScope.y) + vAxisZ * (unit.z * vScope.z);
+    vec4 clip = viewProjection * vec4(world, 1.0);
+    gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0); // reversed-Z, zero-to-one clip depth
+    vec3 n = mat3(vAxisX, vAxisY, vAxisZ) * scopeNormal(normalize(normalDepth.xyz), nominal, vScope);
+    colour = vec4(shade(albedo.rgb, n, world), 1.0);
+}

@@ -1,0 +1,38 @@
+#version 450 core
+// LOD4: terminal meshes instanced over the cull pass's draw lists, the instance data read as
+// vertex attributes straight from the list records (vertex pulling from buffers costs about 6x
+// on llvmpipe). In the last part of its range a terminal flattens toward its wall, so that the
+// switch to its impostor (LOD3) does not pop its depth.
+#include "gpu_types.h"
+#include "frame.glsl"
+
+layout(location = HEXLOD_ATTRIBUTE_POSITION) in vec3 unitPosition;
+layout(location = HEXLOD_ATTRIBUTE_NORMAL) in vec3 storedNormal;
+layout(location = HEXLOD_ATTRIBUTE_COLOR) in vec4 albedo;
+layout(location = HEXLOD_ATTRIBUTE_INSTANCE_POSITION) in vec3 corner;
+layout(location = HEXLOD_ATTRIBUTE_INSTANCE_BUILDING) in float transition;
+layout(location = HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION) in vec4 orientation;
+layout(location = HEXLOD_ATTRIBUTE_INSTANCE_SIZE) in vec2 size;
+layout(location = HEXLOD_ATTRIBUTE_INSTANCE_SHAPE) in uint shape;
+layout(location = HEXLOD_ATTRIBUTE_INSTANCE_DEPTH) in float depthRatio;
+
+layout(std430, binding = 8) readonly buffer ShapeBuffer { GpuShape shapes[]; };
+
+out vec3 vNormal;
+out vec3 vAlbedo;
+out vec3 vPosition;
+
+void main() {
+    vec4 q = normalize(orientation);
+    vec3 axisX = rotateByQuaternion(q, vec3(1, 0, 0));
+    vec3 axisY = rotateByQuaternion(q, vec3(0, 1, 0));
+    vec3 axisZ = rotateByQuaternion(q, vec3(0, 0, 1));
+    float depth = depthRatio * min(size.x, size.y) * (1.0 - transition);
+    vec3 position = corner + axisX * (unitPosition.x * size.x) + axisY * (unitPosition.y * size.y) +
+                    axisZ * (unitPosition.z * depth);
+    gl_Position = viewProjection * vec4(position, 1.0);
+    vec3 n = scopeNormal(storedNormal, shapes[shape].nominalSize.xyz, vec3(size, depth));
+    vNormal = mat3(axisX, axisY, axisZ) * n;
+    vAlbedo = albedo.rgb;
+    vPosition = position;
+}

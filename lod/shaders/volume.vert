@@ -1,0 +1,24 @@
+#version 450 core
+// Base volumes in cell-local metres, placed by their cell's camera-relative origin (computed
+// in double on the CPU, so a city 1e7 m out renders as steadily as one at the origin).
+#include "gpu_types.h"
+#include "frame.glsl"
+
+layout(location = HEXLOD_ATTRIBUTE_POSITION) in vec3 localPosition;
+layout(location = HEXLOD_ATTRIBUTE_NORMAL) in vec3 normal;
+layout(location = HEXLOD_ATTRIBUTE_COLOR) in vec4 albedo;
+
+uniform vec3 cellOffset;
+
+out vec3 vNormal;
+out vec3 vAlbedo;
+out vec3 vPosition;
+out vec3 vLocal;
+
+void main() {
+    vPosition = cellOffset + localPosition;
+    gl_Position = viewProjection * vec4(vPosition, 1.0);
+    vNormal = normal;
+    vAlbedo = albedo.rgb;
+    vLocal = localPosition;
+}

@@ -1,0 +1,388 @@
+// The frame: scheduling, upload, the cull pass and the draws.
+#include "hexlod/lod/city_renderer.h"
+#include "hexlod/render/gl_api.h"
+#include "hexlod/render/gpu_types.h"
+#include "hexlod/render/mesh_vertex_format.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace hexlod::lod {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// std140 mirror of FrameBlock in frame.glsl.
+struct FrameUniforms {
+    glm::mat4 viewProjection;
+    glm::vec4 sunDirection;
+    glm::vec4 sunColour;
+    glm::vec4 skyColour;
+    glm::vec4 viewport;
+};
+
+constexpr glm::vec3 kSky(0.62f, 0.72f, 0.84f);
+
+// The draw-list records as per-instance attributes (gpu_types.h names their locations).
+void setTerminalInstanceFormat(uint32_t vao, uint32_t binding) {
+    const struct {
+        GLuint location;
+        GLint components;
+        GLenum type;
+        bool integer;
+        GLuint offset;
+    } attributes[] = {
+        {HEXLOD_ATTRIBUTE_INSTANCE_POSITION, 3, GL_FLOAT, false, 0},
+        {HEXLOD_ATTRIBUTE_INSTANCE_BUILDING, 1, GL_FLOAT, false, 12}, // the transition factor in draw lists
+        {HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION, 4, GL_SHORT, false, 16},
+        {HEXLOD_ATTRIBUTE_INSTANCE_SIZE, 2, GL_HALF_FLOAT, false, 24},
+        {HEXLOD_ATTRIBUTE_INSTANCE_SHAPE, 1, GL_UNSIGNED_SHORT, true, 28},
+        {HEXLOD_ATTRIBUTE_INSTANCE_DEPTH, 1, GL_HALF_FLOAT, false, 30},
+    };
+    for (const auto& a : attributes) {
+        gl::glEnableVertexArrayAttrib(vao, a.location);
+        if (a.integer)
+            gl::glVertexArrayAttribIFormat(vao, a.location, a.components, a.type, a.offset);
+        else
+            gl::glVertexArrayAttribFormat(vao, a.location, a.components, a.type, a.type == GL_SHORT,
+                                          a.offset);
+        gl::glVertexArrayAttribBinding(vao, a.location, binding);
+    }
+    gl::glVertexArrayBindingDivisor(vao, binding, 1);
+}
+
+// Reversed-Z perspective for zero-to-one clip depth: near maps to 1, far to 0.
+glm::mat4 reversedPerspective(double fovY, double aspect, double nearPlane, double farPlane) {
+    const double f = 1.0 / std::tan(0.5 * fovY);
+    glm::dmat4 p(0.0);
+    p[0][0] = f / aspect;
+    p[1][1] = f;
+    p[2][2] = nearPlane / (farPlane - nearPlane);
+    p[2][3] = -1.0;
+    p[3][2] = nearPlane * farPlane / (farPlane - nearPlane);
+    return glm::mat4(p);
+}
+
+} // namespace
+
+const char* renderModeName(RenderMode mode) {
+    switch (mode) {
+    case RenderMode::Lod:
+        return "lod";
+    case RenderMode::AllLod4:
+        return "lod4";
+    case RenderMode::AllLod3:
+        return "lod3";
+    case RenderMode::AllLod2:
+        return "lod2";
+    case RenderMode::AllLod1:
+        return "lod1";
+    case RenderMode::AllLod0:
+        return "lod0";
+    }
+    return "?";
+}
+
+bool parseRenderMode(std::string_view name, RenderMode& out) {
+    for (RenderMode mode : {RenderMode::Lod, RenderMode::AllLod4, RenderMode::AllLod3, RenderMode::AllLod2,
+                            RenderMode::AllLod1, RenderMode::AllLod0}) {
+        if (name == renderModeName(mode)) {
+            out = mode;
+            return true;
+        }
+    }
+    return false;
+}
+
+struct CityRenderer::Programs {
+    render::ShaderProgram lod4, impostor, volume;
+};
+
+CityRenderer::CityRenderer(cells::BatchCatalog& catalog, cache::TerminalSetCache& cache,
+                           const render::TerminalMeshLibrary& meshes, const SceneImpostors* impostors,
+                           CityRendererOptions options)
+    : catalog_(catalog), cache_(cache), meshes_(meshes), impostors_(impostors), options_(std::move(options)),
+      volumes_(catalog, options_.volumeBudgetBytes) {}
+
+CityRenderer::~CityRenderer() {
+    for (uint32_t buffer : {sphereBuffer_, frameBuffer_})
+        if (buffer) gl::glDeleteBuffers(1, &buffer);
+    for (uint32_t vao : {lod4Vao_, impostorVao_})
+        if (vao) gl::glDeleteVertexArrays(1, &vao);
+}
+
+bool CityRenderer::init(std::string& error) {
+    cells::SchedulerOptions scheduling;
+    scheduling.lod = options_.lod;
+    scheduling.workers = options_.schedulerWorkers;
+    scheduling.maxBatchesPerFrame = options_.maxBatchesPerFrame;
+    scheduling.treeTerminalDistance = options_.treeTerminalDistance;
+    if (options_.mode == RenderMode::AllLod4 || options_.mode == RenderMode::AllLod3 ||
+        options_.mode == RenderMode::AllLod2) {
+        scheduling.forcedLod = cells::CellLod::Terminals;
+    } else if (options_.mode == RenderMode::AllLod1 || options_.mode == RenderMode::AllLod0) {
+        scheduling.forcedLod = cells::CellLod::Extruded;
+    }
+    try {
+        scheduler_ = std::make_unique<cells::Scheduler>(catalog_, cache_, scheduling);
+    } catch (const std::invalid_argument& e) {
+        error = std::string("LOD profile: ") + e.what();
+        return false;
+    }
+    if (!render::Framebuffer::create({options_.width, options_.height, {GL_RGBA16F}, true}, target_, error))
+        return false;
+    if (!arena_.create(options_.arenaRecords, error) || !cull_.init(error)) return false;
+    programs_ = std::make_unique<Programs>();
+    render::ShaderLibrary library = lodShaderLibrary();
+    programs_->lod4 = render::ShaderProgram::build(
+        library,
+        {{render::ShaderStage::Vertex, "terminal_mesh.vert"}, {render::ShaderStage::Fragment, "lit.frag"}},
+        "", error);
+    if (!programs_->lod4.valid()) return false;
+    programs_->volume = render::ShaderProgram::build(
+        library,
+        {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "volume.frag"}}, "",
+        error);
+    if (!programs_->volume.valid()) return false;
+
+    shapes_.upload(meshes_);
+    ground_.upload(catalog_.scene().roads, catalog_.cellOrigin(catalog_.index().cells().empty()
+                                                                   ? cells::HexCoord{}
+                                                                   : catalog_.index().cells().front().cell));
+    if (impostors_ && !impostors_->facades.empty()) {
+        const impostor::ViewLayout& layout = impostors_->facades.front().layout;
+        std::vector<const impostor::ImpostorAtlas*> atlases;
+        std::vector<glm::vec4> spheres;
+        for (const impostor::ImpostorAtlas& atlas : impostors_->facades) {
+            atlases.push_back(&atlas);
+            spheres.emplace_back(atlas.centre, atlas.radius);
+        }
+        impostor::ViewLookup lookup(layout);
+        if (!impostorTextures_.upload(layout, atlases, lookup.buildTable(128), error)) return false;
+        impostor::ViewWeights front;
+        lookup.nearestViews(glm::vec3(0, 0, 1), front);
+        centralView_ = front.views[0];
+        for (uint32_t g = 0; g < impostors_->facadeLayer.size(); ++g)
+            for (size_t s = 0; s < impostors_->facadeLayer[g].size(); ++s)
+                shapes_.setImpostorLayer(shapes_.shapeBase(g) + uint32_t(s), impostors_->facadeLayer[g][s]);
+        gl::glCreateBuffers(1, &sphereBuffer_);
+        gl::glNamedBufferStorage(sphereBuffer_, GLsizeiptr(spheres.size() * sizeof(glm::vec4)),
+                                 spheres.data(), 0);
+        programs_->impostor =
+            render::ShaderProgram::build(library,
+                                         {{render::ShaderStage::Vertex, "impostor_terminal.vert"},
+                                          {render::ShaderStage::Fragment, "impostor_terminal.frag"}},
+                                         "", error);
+        if (!programs_->impostor.valid()) return false;
+    }
+    shapes_.commit();
+
+    gl::glCreateBuffers(1, &frameBuffer_);
+    gl::glNamedBufferStorage(frameBuffer_, sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gl::glCreateVertexArrays(1, &lod4Vao_);
+    gl::glVertexArrayVertexBuffer(lod4Vao_, 0, shapes_.vertexBuffer(), 0, sizeof(render::MeshVertex));
+    gl::glVertexArrayElementBuffer(lod4Vao_, shapes_.indexBuffer());
+    render::setMeshVertexFormat(lod4Vao_, 0);
+    setTerminalInstanceFormat(lod4Vao_, 1);
+    gl::glCreateVertexArrays(1, &impostorVao_);
+    setTerminalInstanceFormat(impostorVao_, 1);
+    return true;
+}
+
+FrameStats CityRenderer::render(const scene::CameraPose& pose, double timeSeconds, double nearPlane,
+                                double farPlane) {
+    const auto frameStart = Clock::now();
+    FrameStats stats;
+    stats.frame = frame_++;
+    const double aspect = double(options_.width) / double(options_.height);
+
+    // 1. Cells and their LOD; batches the frame needs are generated here (synchronous mode).
+    cells::Camera camera;
+    camera.position = pose.position;
+    camera.forward = pose.forward;
+    camera.up = pose.up;
+    camera.fovY = pose.fovY;
+    camera.viewportWidth = options_.width;
+    camera.viewportHeight = options_.height;
+    camera.nearPlane = nearPlane;
+    camera.farPlane = farPlane;
+    const double generatedBefore = cache_.stats().generationSecondsTotal;
+    auto stageStart = Clock::now();
+    const cells::FrameDecision decision = scheduler_->update(camera, timeSeconds);
+    stats.scheduleMs = millisecondsSince(stageStart);
+    stats.generationMs = (cache_.stats().generationSecondsTotal - generatedBefore) * 1000.0;
+
+    // 2. Upload: ready terminal sets into the arena; base volumes for extruded cells, for the
+    // shells under terminals, and for batches still being generated (so nothing vanishes).
+    stageStart = Clock::now();
+    arena_.beginFrame(stats.frame);
+    volumes_.beginFrame(stats.frame);
+    CullInputs inputs;
+    inputs.camera = pose.position;
+    inputs.shapeCount = shapes_.shapeCount();
+    inputs.shapeImpostor = shapes_.impostorFlags();
+    std::vector<std::shared_ptr<const grammar::TerminalSet>> pinned;
+    std::vector<std::pair<const VolumeMesh*, bool>> volumes; // mesh, wall texture
+    const size_t buildingGrammars = catalog_.scene().buildingGrammars.size();
+    // LOD0 suffices for an extruded cell whose LOD0 error stays under the budget; LOD1 is
+    // counted apart for the reports.
+    const double lod1Distance =
+        lodDistance(options_.lod.geometricError[0], options_.lod, pose.fovY, options_.height);
+    for (const cells::CellDecision& cell : decision.cells) {
+        ++stats.visibleCells;
+        if (cell.lod == cells::CellLod::Terminals) {
+            ++stats.cellsPerLod[4];
+            for (uint32_t b : cell.ready) {
+                std::shared_ptr<const grammar::TerminalSet> set = cache_.find(catalog_.key(b));
+                const std::vector<uint32_t>* pages =
+                    set ? arena_.acquire(catalog_.key(b).digest(), *set) : nullptr;
+                const bool building = catalog_.batch(b).grammar < buildingGrammars;
+                if (!pages) {
+                    ++stats.batchesRejected;
+                    if (building) volumes.emplace_back(&volumes_.acquire(b, 0.0f), true);
+                    continue;
+                }
+                inputs.batches.push_back({set.get(), pages, catalog_.cellOrigin(catalog_.batch(b).cell),
+                                          shapes_.shapeBase(catalog_.batch(b).grammar)});
+                pinned.push_back(std::move(set));
+                ++stats.batchesDrawn;
+                if (building) volumes.emplace_back(&volumes_.acquire(b, 0.5f), false);
+            }
+            for (uint32_t b : cell.requested) {
+                ++stats.batchesPending;
+                if (catalog_.batch(b).grammar < buildingGrammars)
+                    volumes.emplace_back(&volumes_.acquire(b, 0.0f), true);
+            }
+        } else {
+            ++stats.cellsPerLod[cell.distance < lod1Distance ? 1 : 0];
+            const uint32_t first = catalog_.firstBatchOf(cell.cell);
+            const uint32_t count = uint32_t(catalog_.index().batchesOf(cell.cell).size());
+            for (uint32_t b = first; b < first + count; ++b) {
+                if (catalog_.batch(b).grammar >= buildingGrammars) continue;
+                volumes.emplace_back(&volumes_.acquire(b, 0.0f), true);
+                ++stats.batchesDrawn;
+            }
+        }
+    }
+    stats.uploadMs = millisecondsSince(stageStart);
+
+    // 3. The cull and LOD pass.
+    stageStart = Clock::now();
+    const cells::Frustum frustum(pose.position, pose.forward, pose.up, pose.fovY, aspect, nearPlane,
+                                 farPlane);
+    const bool impostors = impostorTextures_.layers() > 0 && options_.mode != RenderMode::AllLod4;
+    inputs.frame =
+        makeCullFrame(frustum, options_.lod, pose.fovY, options_.height, options_.transitionBand, impostors);
+    if (options_.mode == RenderMode::AllLod3)
+        inputs.frame.lodDistance = glm::vec4(0.0f, std::numeric_limits<float>::max(), 0.0f, 1.0f);
+    if (options_.mode == RenderMode::AllLod2) inputs.frame.lodDistance = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    cull_.run(inputs, arena_.buffer(), shapes_.meshes());
+    stats.cullMs = millisecondsSince(stageStart);
+
+    // 4. Draws.
+    stageStart = Clock::now();
+    const glm::dvec3 right = glm::normalize(glm::cross(pose.forward, pose.up));
+    const glm::dvec3 up = glm::cross(right, pose.forward);
+    glm::mat4 view(1.0f);
+    for (int c = 0; c < 3; ++c) {
+        view[c][0] = float(right[c]);
+        view[c][1] = float(up[c]);
+        view[c][2] = float(-pose.forward[c]);
+    }
+    FrameUniforms uniforms;
+    uniforms.viewProjection = reversedPerspective(pose.fovY, aspect, nearPlane, farPlane) * view;
+    uniforms.sunDirection = glm::vec4(glm::normalize(glm::vec3(0.45f, -0.55f, 0.7f)), 0.35f);
+    uniforms.sunColour = glm::vec4(1.0f, 0.97f, 0.9f, 0.0f);
+    uniforms.skyColour = glm::vec4(kSky, 1.0f / 9000.0f);
+    uniforms.viewport = glm::vec4(float(options_.width), float(options_.height), 1.0f / float(options_.width),
+                                  1.0f / float(options_.height));
+    gl::glNamedBufferSubData(frameBuffer_, 0, sizeof uniforms, &uniforms);
+    gl::glBindBufferBase(GL_UNIFORM_BUFFER, 1, frameBuffer_);
+
+    gl::glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    target_.bind();
+    target_.clear(kSky.r, kSky.g, kSky.b, 1.0f, 0.0f);
+    gl::glEnable(GL_DEPTH_TEST);
+    gl::glDepthFunc(GL_GREATER);
+    gl::glDepthMask(GL_TRUE);
+    gl::glDisable(GL_BLEND);
+    gl::glEnable(GL_CULL_FACE);
+    gl::glCullFace(GL_BACK);
+    drawTerminals(stats);
+    drawVolumes(volumes, pose.position, stats);
+    stats.triangles += ground_.draw(programs_->volume, pose.position);
+    stats.draws += 2;
+    stats.drawMs = millisecondsSince(stageStart);
+
+    stageStart = Clock::now();
+    gl::glFinish();
+    gl::glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    gl::glDepthFunc(GL_LESS);
+    stats.gpuWaitMs = millisecondsSince(stageStart);
+    stats.frameMs = millisecondsSince(frameStart);
+
+    stats.cacheBytes = cache_.stats().memoryBytes;
+    stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
+                     volumes_.stats().residentBytes + ground_.byteSize() +
+                     uint64_t(options_.width) * options_.height * 12;
+    stats.impostorBytes = impostorTextures_.byteSize();
+    return stats;
+}
+
+void CityRenderer::drawTerminals(FrameStats& stats) {
+    const uint32_t shapes = cull_.shapeCount();
+    if (shapes == 0) return;
+    const std::vector<glm::uvec4> counters = cull_.readCounters();
+    for (uint32_t s = 0; s < shapes; ++s) {
+        stats.terminalsPerLod[4] += counters[s].x;
+        stats.terminalsPerLod[3] += counters[s].z;
+        stats.terminalsPerLod[2] += counters[s].w;
+        stats.triangles += uint64_t(counters[s].x) * shapes_.triangles(s) + uint64_t(counters[s].y) * 12;
+        stats.draws += (counters[s].x > 0) + (counters[s].y > 0);
+    }
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
+    gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
+    gl::glBindVertexArray(lod4Vao_);
+    gl::glVertexArrayVertexBuffer(lod4Vao_, 1, cull_.listBuffer(), 0, sizeof(gpu::GpuTerminal));
+    programs_->lod4.use();
+    gl::glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(shapes),
+                                    kLod4CommandStride);
+    if (programs_->impostor.valid() && stats.terminalsPerLod[3] + stats.terminalsPerLod[2] > 0) {
+        gl::glBindVertexArray(impostorVao_);
+        gl::glVertexArrayVertexBuffer(impostorVao_, 1, cull_.listBuffer(), 0, sizeof(gpu::GpuTerminal));
+        programs_->impostor.use();
+        impostorTextures_.bind(programs_->impostor, 0);
+        programs_->impostor.set("centralView", centralView_);
+        programs_->impostor.set("parallaxIterations", options_.parallaxIterations);
+        gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, sphereBuffer_);
+        gl::glMultiDrawArraysIndirect(GL_TRIANGLES,
+                                      reinterpret_cast<const void*>(uintptr_t(shapes) * kLod4CommandStride),
+                                      GLsizei(shapes), kImpostorCommandStride);
+    }
+    gl::glBindVertexArray(0);
+    gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+void CityRenderer::drawVolumes(const std::vector<std::pair<const VolumeMesh*, bool>>& volumes,
+                               const glm::dvec3& camera, FrameStats& stats) {
+    programs_->volume.use();
+    for (const auto& [mesh, textured] : volumes) {
+        if (mesh->indexCount == 0) continue;
+        programs_->volume.set("cellOffset", glm::vec3(mesh->cellOrigin - camera));
+        programs_->volume.set("wallTexture", uint32_t(textured));
+        gl::glBindVertexArray(mesh->vao);
+        gl::glDrawElements(GL_TRIANGLES, GLsizei(mesh->indexCount), GL_UNSIGNED_INT, nullptr);
+        stats.triangles += mesh->indexCount / 3;
+        ++stats.draws;
+    }
+    gl::glBindVertexArray(0);
+}
+
+} // namespace hexlod::lod

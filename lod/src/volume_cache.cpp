@@ -1,0 +1,87 @@
+// Building, uploading and evicting base volume meshes.
+#include "hexlod/lod/volume_cache.h"
+#include "hexlod/render/base_volume_mesh.h"
+#include "hexlod/render/gl_api.h"
+#include "hexlod/render/mesh_vertex_format.h"
+
+#include <chrono>
+#include <cstring>
+
+namespace hexlod::lod {
+namespace {
+
+void release(VolumeMesh& mesh) {
+    gl::glDeleteVertexArrays(1, &mesh.vao);
+    gl::glDeleteBuffers(1, &mesh.vertexBuffer);
+    gl::glDeleteBuffers(1, &mesh.indexBuffer);
+}
+
+} // namespace
+
+VolumeCache::~VolumeCache() {
+    for (auto& [key, mesh] : meshes_) release(mesh);
+}
+
+void VolumeCache::beginFrame(uint64_t frame) {
+    frame_ = frame;
+    stats_.built = 0;
+    stats_.buildMs = 0.0;
+    evict();
+}
+
+void VolumeCache::evict() {
+    while (stats_.residentBytes > budget_) {
+        auto oldest = meshes_.end();
+        for (auto it = meshes_.begin(); it != meshes_.end(); ++it) {
+            if (it->second.lastUsed >= frame_) continue;
+            if (oldest == meshes_.end() || it->second.lastUsed < oldest->second.lastUsed) oldest = it;
+        }
+        if (oldest == meshes_.end()) return; // all in use this frame
+        stats_.residentBytes -= oldest->second.bytes;
+        release(oldest->second);
+        meshes_.erase(oldest);
+    }
+}
+
+const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset) {
+    uint32_t insetBits;
+    std::memcpy(&insetBits, &inset, sizeof insetBits);
+    const uint64_t key = catalog_.key(batch).digest() ^ (uint64_t(insetBits) * 0x9e3779b97f4a7c15ull);
+    if (auto it = meshes_.find(key); it != meshes_.end()) {
+        it->second.lastUsed = frame_;
+        return it->second;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const render::TerminalMesh shell = render::buildBaseVolumes(catalog_.expandExtruded(batch), inset);
+    VolumeMesh mesh;
+    mesh.cellOrigin = catalog_.cellOrigin(catalog_.batch(batch).cell);
+    mesh.lastUsed = frame_;
+    mesh.indexCount = uint32_t(shell.indices.size());
+    mesh.bytes = shell.byteSize();
+    gl::glCreateBuffers(1, &mesh.vertexBuffer);
+    gl::glNamedBufferStorage(
+        mesh.vertexBuffer,
+        GLsizeiptr(std::max<size_t>(shell.vertices.size(), 1) * sizeof(render::MeshVertex)),
+        shell.vertices.empty() ? nullptr : shell.vertices.data(), 0);
+    gl::glCreateBuffers(1, &mesh.indexBuffer);
+    gl::glNamedBufferStorage(mesh.indexBuffer,
+                             GLsizeiptr(std::max<size_t>(shell.indices.size(), 1) * sizeof(uint32_t)),
+                             shell.indices.empty() ? nullptr : shell.indices.data(), 0);
+    gl::glCreateVertexArrays(1, &mesh.vao);
+    gl::glVertexArrayVertexBuffer(mesh.vao, 0, mesh.vertexBuffer, 0, sizeof(render::MeshVertex));
+    gl::glVertexArrayElementBuffer(mesh.vao, mesh.indexBuffer);
+    render::setMeshVertexFormat(mesh.vao, 0);
+    stats_.residentBytes += mesh.bytes;
+    ++stats_.built;
+    stats_.buildMs +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return meshes_[key] = mesh;
+}
+
+VolumeStats VolumeCache::stats() const {
+    VolumeStats s = stats_;
+    s.resident = uint32_t(meshes_.size());
+    return s;
+}
+
+} // namespace hexlod::lod
