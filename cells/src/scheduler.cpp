@@ -43,8 +43,8 @@ Scheduler::Scheduler(BatchCatalog& catalog, cache::TerminalSetCache& cache, Sche
         throw std::invalid_argument("maxMillisecondsPerFrame must be >= 0");
     if (!(options_.prefetchSeconds >= 0.0) || !std::isfinite(options_.prefetchSeconds))
         throw std::invalid_argument("prefetchSeconds must be finite and >= 0");
-    if (!(options_.treeTerminalDistance >= 0.0))
-        throw std::invalid_argument("treeTerminalDistance must be >= 0");
+    if (!(options_.treeGeometricError >= 0.0) || !std::isfinite(options_.treeGeometricError))
+        throw std::invalid_argument("treeGeometricError must be finite and >= 0");
     for (uint32_t i = 0; i < options_.workers; ++i) threads_.emplace_back([this] { workerLoop(); });
 }
 
@@ -75,8 +75,11 @@ bool Scheduler::isTreeBatch(uint32_t batch) const {
     return catalog_.batch(batch).grammar >= catalog_.scene().buildingGrammars.size();
 }
 
-bool Scheduler::wantsTrees(double distance) const {
-    return options_.treeTerminalDistance <= 0.0 || distance < options_.treeTerminalDistance;
+bool Scheduler::wantsTrees(double distance, const Camera& camera) const {
+    if (options_.treeGeometricError <= 0.0) return true;
+    if (distance <= 0.0) return true;
+    const double sse = options_.treeGeometricError * camera.viewportHeight / (distance * 2.0 * std::tan(camera.fovY * 0.5));
+    return sse > options_.lod.maxScreenSpaceError;
 }
 
 bool Scheduler::requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue) {
@@ -112,7 +115,7 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
         lod_[i] = options_.forcedLod ? *options_.forcedLod : nextLod(lod_[i], sse);
         if (!frustum.intersectsBox(lo, hi)) continue;
         CellDecision decision{cells[i].cell, distance, sse, lod_[i], {}, {}};
-        decision.treesAsTerminals = wantsTrees(distance);
+        decision.treesAsTerminals = wantsTrees(distance, camera);
         if (lod_[i] == CellLod::Terminals) {
             ++frame.terminalCells;
             const uint32_t first = catalog_.firstBatchOf(cells[i].cell);
@@ -153,7 +156,7 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
                 const uint32_t count =
                     static_cast<uint32_t>(catalog_.index().batchesOf(cells[i].cell).size());
                 for (uint32_t b = first; b < first + count; ++b) {
-                    if (isTreeBatch(b) && !wantsTrees(distance)) continue;
+                    if (isTreeBatch(b) && !wantsTrees(distance, camera)) continue;
                     if (busy(b) == Busy::No) requestIfMissing(b, sse, true, queue);
                 }
             }

@@ -124,7 +124,8 @@ struct BuildingExpander::Impl {
     }
 
     void recordElement(const Scope& s, uint32_t rule) {
-        out->elements.push_back({s.origin, s.x, s.y, glm::vec2(s.size.x, s.size.y), rule, atom});
+        out->elements.push_back({s.origin, s.x, s.y, glm::vec2(s.size.x, s.size.y), rule, atom, s.key,
+                                 s.floor, s.floors, s.index, s.count, s.level, s.depth});
         const float top = std::max(s.origin.z, s.origin.z + s.y.z * s.size.y) - baseZ;
         out->height = std::max(out->height, top);
     }

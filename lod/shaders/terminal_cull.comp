@@ -14,6 +14,7 @@ layout(std430, binding = 2) readonly buffer PageBuffer { uvec4 pages[]; }; // ba
 layout(std430, binding = 3) readonly buffer ShapeBuffer { uvec4 shapes[]; };
 layout(std430, binding = 4) buffer CounterBuffer { uvec4 counters[]; };
 layout(std430, binding = 5) writeonly buffer ListBuffer { GpuTerminal lists[]; };
+layout(std430, binding = 10) readonly buffer TreeBuffer { vec4 trees[]; }; // by tree id: position, species
 
 uniform uint workgroupCount;
 
@@ -26,6 +27,7 @@ void main() {
     GpuTerminal t = arena[page.y + gl_LocalInvocationID.x];
     uint shape = batch.shapeBase + (t.shapeAndDepth & 0xffffu);
     uvec4 info = shapes[shape];
+    if (info.w != 0u && treeIsBillboard(trees[t.building].xyz, frame)) return;
     precise vec3 corner = t.position + batch.origin;
     float transition;
     uint lod = classifyTerminal(t, corner, frame, info.z != 0u, transition);

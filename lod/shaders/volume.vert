@@ -6,6 +6,7 @@
 
 layout(location = HEXLOD_ATTRIBUTE_POSITION) in vec3 localPosition;
 layout(location = HEXLOD_ATTRIBUTE_NORMAL) in vec3 normal;
+layout(location = HEXLOD_ATTRIBUTE_UV) in vec2 uv;
 layout(location = HEXLOD_ATTRIBUTE_COLOR) in vec4 albedo;
 
 uniform vec3 cellOffset;
@@ -14,6 +15,7 @@ out vec3 vNormal;
 out vec3 vAlbedo;
 out vec3 vPosition;
 out vec3 vLocal;
+flat out float vElement; // a wall's extruded-set element (render/base_volume_mesh.h), -1 elsewhere
 
 void main() {
     vPosition = cellOffset + localPosition;
@@ -21,4 +23,5 @@ void main() {
     vNormal = normal;
     vAlbedo = albedo.rgb;
     vLocal = localPosition;
+    vElement = uv.y > 0.0 ? uv.x : -1.0;
 }

@@ -1,5 +1,6 @@
 // The frame: scheduling, upload, the cull pass and the draws.
 #include "hexlod/lod/city_renderer.h"
+#include "hexlod/lod/lod1_codegen.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/gpu_types.h"
 #include "hexlod/render/mesh_vertex_format.h"
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace hexlod::lod {
 namespace {
@@ -103,6 +105,7 @@ bool parseRenderMode(std::string_view name, RenderMode& out) {
 
 struct CityRenderer::Programs {
     render::ShaderProgram lod4, impostor, volume;
+    std::map<uint32_t, render::ShaderProgram> lod1; // per building grammar with buildings
 };
 
 CityRenderer::CityRenderer(cells::BatchCatalog& catalog, cache::TerminalSetCache& cache,
@@ -123,10 +126,19 @@ bool CityRenderer::init(std::string& error) {
     scheduling.lod = options_.lod;
     scheduling.workers = options_.schedulerWorkers;
     scheduling.maxBatchesPerFrame = options_.maxBatchesPerFrame;
-    scheduling.treeTerminalDistance = options_.treeTerminalDistance;
+    // Trees: geometry near the camera, billboards beyond; the reference draws every tree as
+    // geometry and the forced coarse modes every tree as a billboard.
+    const bool speciesImpostors = impostors_ && !impostors_->species.empty();
+    treeError_ =
+        options_.treeGeometricError < 0.0 ? options_.lod.geometricError[3] : options_.treeGeometricError;
+    if (!speciesImpostors || options_.mode == RenderMode::AllLod4) treeError_ = 0.0;
+    scheduling.treeGeometricError = options_.mode == RenderMode::Lod ? treeError_ : 0.0;
     if (options_.mode == RenderMode::AllLod4 || options_.mode == RenderMode::AllLod3 ||
         options_.mode == RenderMode::AllLod2) {
         scheduling.forcedLod = cells::CellLod::Terminals;
+    }
+    if (options_.mode == RenderMode::AllLod3 || options_.mode == RenderMode::AllLod2) {
+        scheduling.treeGeometricError = 1e9; // billboards only: tree batches are never wanted
     } else if (options_.mode == RenderMode::AllLod1 || options_.mode == RenderMode::AllLod0) {
         scheduling.forcedLod = cells::CellLod::Extruded;
     }
@@ -181,8 +193,29 @@ bool CityRenderer::init(std::string& error) {
                                           {render::ShaderStage::Fragment, "impostor_terminal.frag"}},
                                          "", error);
         if (!programs_->impostor.valid()) return false;
+        // One LOD1 interpreter per building grammar that has buildings.
+        for (uint32_t g = 0; g < catalog_.scene().buildingGrammars.size(); ++g) {
+            const scene::GrammarBuildings& grammar = catalog_.scene().buildingGrammars[g];
+            if (grammar.buildings.empty()) continue;
+            render::ShaderLibrary withGrammar = library;
+            withGrammar.add("lod1_grammar.glsl", generateLod1Grammar(grammar.grammar));
+            render::ShaderProgram program = render::ShaderProgram::build(
+                withGrammar,
+                {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "lod1.frag"}},
+                "", error);
+            if (!program.valid()) {
+                error = "LOD1 interpreter of grammar '" + grammar.name + "': " + error;
+                return false;
+            }
+            programs_->lod1.emplace(g, std::move(program));
+        }
     }
+    const size_t buildingGrammars = catalog_.scene().buildingGrammars.size();
+    shapeTree_.assign(shapes_.shapeCount(), 0);
+    for (uint32_t g = uint32_t(buildingGrammars); g < catalog_.index().grammarCount(); ++g)
+        for (size_t s = 0; s < meshes_.shapeCount(g); ++s) shapeTree_[shapes_.shapeBase(g) + s] = 1;
     shapes_.commit();
+    if (!trees_.init(catalog_, impostors_, ground_.origin(), error)) return false;
 
     gl::glCreateBuffers(1, &frameBuffer_);
     gl::glNamedBufferStorage(frameBuffer_, sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -228,8 +261,12 @@ FrameStats CityRenderer::render(const scene::CameraPose& pose, double timeSecond
     inputs.camera = pose.position;
     inputs.shapeCount = shapes_.shapeCount();
     inputs.shapeImpostor = shapes_.impostorFlags();
+    inputs.shapeTree = shapeTree_;
+    inputs.trees = &trees_.trees();
+    inputs.treeBuffer = trees_.treeBuffer();
+    std::vector<std::pair<uint32_t, bool>> billboards; // tree batch, every tree a billboard
     std::vector<std::shared_ptr<const grammar::TerminalSet>> pinned;
-    std::vector<std::pair<const VolumeMesh*, bool>> volumes; // mesh, wall texture
+    std::vector<VolumeDraw> volumes;
     const size_t buildingGrammars = catalog_.scene().buildingGrammars.size();
     // LOD0 suffices for an extruded cell whose LOD0 error stays under the budget; LOD1 is
     // counted apart for the reports.
@@ -246,27 +283,44 @@ FrameStats CityRenderer::render(const scene::CameraPose& pose, double timeSecond
                 const bool building = catalog_.batch(b).grammar < buildingGrammars;
                 if (!pages) {
                     ++stats.batchesRejected;
-                    if (building) volumes.emplace_back(&volumes_.acquire(b, 0.0f), true);
+                    if (building)
+                        volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f});
+                    else
+                        billboards.emplace_back(b, true);
                     continue;
                 }
+                if (!building) billboards.emplace_back(b, false);
                 inputs.batches.push_back({set.get(), pages, catalog_.cellOrigin(catalog_.batch(b).cell),
                                           shapes_.shapeBase(catalog_.batch(b).grammar)});
                 pinned.push_back(std::move(set));
                 ++stats.batchesDrawn;
-                if (building) volumes.emplace_back(&volumes_.acquire(b, 0.5f), false);
+                if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), false, 1.0f});
             }
             for (uint32_t b : cell.requested) {
                 ++stats.batchesPending;
                 if (catalog_.batch(b).grammar < buildingGrammars)
-                    volumes.emplace_back(&volumes_.acquire(b, 0.0f), true);
+                    volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f});
             }
         } else {
-            ++stats.cellsPerLod[cell.distance < lod1Distance ? 1 : 0];
+            // LOD1 within its distance, blending into LOD0 over the band before it.
+            float lod0Blend = 1.0f;
+            if (!programs_->lod1.empty() && options_.mode != RenderMode::AllLod0) {
+                const double start = lod1Distance * (1.0 - options_.transitionBand);
+                lod0Blend = options_.mode == RenderMode::AllLod1 ? 0.0f
+                            : cell.distance >= lod1Distance      ? 1.0f
+                            : cell.distance <= start
+                                ? 0.0f
+                                : float((cell.distance - start) / (lod1Distance - start));
+            }
+            ++stats.cellsPerLod[lod0Blend < 1.0f ? 1 : 0];
             const uint32_t first = catalog_.firstBatchOf(cell.cell);
             const uint32_t count = uint32_t(catalog_.index().batchesOf(cell.cell).size());
             for (uint32_t b = first; b < first + count; ++b) {
-                if (catalog_.batch(b).grammar >= buildingGrammars) continue;
-                volumes.emplace_back(&volumes_.acquire(b, 0.0f), true);
+                if (catalog_.batch(b).grammar >= buildingGrammars) {
+                    billboards.emplace_back(b, true);
+                    continue;
+                }
+                volumes.push_back({&volumes_.acquire(b, 0.0f), true, lod0Blend});
                 ++stats.batchesDrawn;
             }
         }
@@ -283,6 +337,10 @@ FrameStats CityRenderer::render(const scene::CameraPose& pose, double timeSecond
     if (options_.mode == RenderMode::AllLod3)
         inputs.frame.lodDistance = glm::vec4(0.0f, std::numeric_limits<float>::max(), 0.0f, 1.0f);
     if (options_.mode == RenderMode::AllLod2) inputs.frame.lodDistance = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const double treeCut = treeError_ > 0.0 && !trees_.empty() && trees_.hasImpostors()
+                               ? lodDistance(treeError_, options_.lod, pose.fovY, options_.height)
+                               : -1.0;
+    setTreeCut(inputs.frame, treeCut, trees_.origin(), pose.position);
     cull_.run(inputs, arena_.buffer(), shapes_.meshes());
     stats.cullMs = millisecondsSince(stageStart);
 
@@ -319,6 +377,17 @@ FrameStats CityRenderer::render(const scene::CameraPose& pose, double timeSecond
     drawVolumes(volumes, pose.position, stats);
     stats.triangles += ground_.draw(programs_->volume, pose.position);
     stats.draws += 2;
+    if (trees_.hasImpostors() && !billboards.empty()) {
+        gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
+        trees_.begin(trees_.program());
+        for (const auto& [batch, all] : billboards) {
+            const uint32_t drawn = trees_.draw(batch, all);
+            stats.treeBillboards += drawn;
+            stats.triangles += 2ull * drawn;
+            stats.draws += drawn > 0;
+        }
+        gl::glBindVertexArray(0);
+    }
     stats.drawMs = millisecondsSince(stageStart);
 
     stageStart = Clock::now();
@@ -334,6 +403,11 @@ FrameStats CityRenderer::render(const scene::CameraPose& pose, double timeSecond
                      uint64_t(options_.width) * options_.height * 12;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;
+}
+
+std::string CityRenderer::summary() const {
+    return "LOD1 shaders: " + std::to_string(programs_ ? programs_->lod1.size() : 0) + " grammar" +
+           (programs_ && programs_->lod1.size() == 1 ? "" : "s");
 }
 
 void CityRenderer::drawTerminals(FrameStats& stats) {
@@ -370,17 +444,42 @@ void CityRenderer::drawTerminals(FrameStats& stats) {
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 
-void CityRenderer::drawVolumes(const std::vector<std::pair<const VolumeMesh*, bool>>& volumes,
-                               const glm::dvec3& camera, FrameStats& stats) {
+void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
+                               FrameStats& stats) {
+    // LOD0 first with one program, then LOD1 grammar by grammar.
     programs_->volume.use();
-    for (const auto& [mesh, textured] : volumes) {
-        if (mesh->indexCount == 0) continue;
-        programs_->volume.set("cellOffset", glm::vec3(mesh->cellOrigin - camera));
-        programs_->volume.set("wallTexture", uint32_t(textured));
-        gl::glBindVertexArray(mesh->vao);
-        gl::glDrawElements(GL_TRIANGLES, GLsizei(mesh->indexCount), GL_UNSIGNED_INT, nullptr);
-        stats.triangles += mesh->indexCount / 3;
+    for (const VolumeDraw& draw : volumes) {
+        if (draw.mesh->indexCount == 0 || draw.lod0Blend < 1.0f) continue;
+        programs_->volume.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
+        programs_->volume.set("texturedWalls", uint32_t(draw.textured));
+        gl::glBindVertexArray(draw.mesh->vao);
+        gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.mesh->indexCount), GL_UNSIGNED_INT, nullptr);
+        stats.triangles += draw.mesh->indexCount / 3;
         ++stats.draws;
+    }
+    for (const auto& [grammar, program] : programs_->lod1) {
+        bool bound = false;
+        for (const VolumeDraw& draw : volumes) {
+            if (draw.mesh->indexCount == 0 || draw.lod0Blend >= 1.0f || draw.mesh->grammar != grammar)
+                continue;
+            if (!bound) {
+                program.use();
+                impostorTextures_.bind(program, 0);
+                program.set("shapeBase", shapes_.shapeBase(grammar));
+                program.set("centralView", centralView_);
+                gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
+                gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, sphereBuffer_);
+                bound = true;
+            }
+            program.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
+            program.set("lod0Blend", draw.lod0Blend);
+            gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, draw.mesh->parameterBuffer);
+            gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, draw.mesh->elementBuffer);
+            gl::glBindVertexArray(draw.mesh->vao);
+            gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.mesh->indexCount), GL_UNSIGNED_INT, nullptr);
+            stats.triangles += draw.mesh->indexCount / 3;
+            ++stats.draws;
+        }
     }
     gl::glBindVertexArray(0);
 }

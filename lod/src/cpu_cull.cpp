@@ -16,6 +16,11 @@ CullResult cullOnCpu(const CullInputs& inputs) {
             gpu::GpuTerminal t;
             std::memcpy(&t, &record, sizeof t);
             const uint32_t shape = batch.shapeBase + (t.shapeAndDepth & 0xffffu);
+            if (!inputs.shapeTree.empty() && inputs.shapeTree[shape] &&
+                shared::treeIsBillboard(glm::vec3((*inputs.trees)[t.building]), inputs.frame)) {
+                ++result.culled;
+                continue;
+            }
             const glm::vec3 corner = t.position + origin;
             float transition = 0.0f;
             const uint32_t lod = shared::classifyTerminal(t, corner, inputs.frame,

@@ -22,7 +22,14 @@ shared::CullFrame makeCullFrame(const cells::Frustum& frustum, const scene::LodP
     const double lod2 = lodDistance(profile.geometricError[2], profile, fovY, viewportHeight);
     frame.lodDistance =
         glm::vec4(float(lod3 * lod3), float(lod2 * lod2), float(transitionBand), impostors ? 1.0f : 0.0f);
+    frame.trees = glm::vec4(-1.0f, 0.0f, 0.0f, 0.0f);
     return frame;
+}
+
+void setTreeCut(shared::CullFrame& frame, double billboardDistance, const glm::dvec3& treeOrigin,
+                const glm::dvec3& camera) {
+    const float cut = billboardDistance < 0.0 ? -1.0f : float(billboardDistance * billboardDistance);
+    frame.trees = glm::vec4(cut, glm::vec3(treeOrigin - camera));
 }
 
 DrawListLayout layoutDrawLists(const CullInputs& inputs) {

@@ -76,7 +76,8 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     }
     std::vector<glm::uvec4> shapes(shapeCount_), meshInfo(shapeCount_);
     for (uint32_t s = 0; s < shapeCount_; ++s) {
-        shapes[s] = glm::uvec4(layout_.base[s], layout_.capacity[s], inputs.shapeImpostor[s], 0u);
+        shapes[s] = glm::uvec4(layout_.base[s], layout_.capacity[s], inputs.shapeImpostor[s],
+                               inputs.shapeTree.empty() ? 0u : inputs.shapeTree[s]);
         const MeshDrawInfo& mesh = meshes[s];
         meshInfo[s] = glm::uvec4(mesh.indexCount, mesh.firstIndex, uint32_t(mesh.baseVertex), 0u);
     }
@@ -102,6 +103,7 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     for (BufferIndex index : {kBatches, kWorkgroups, kShapes, kCounters, kLists, kMeshes, kCommands}) {
         gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindings[index], buffers_[index].id);
     }
+    if (inputs.treeBuffer) gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, inputs.treeBuffer);
     const uint32_t groups = uint32_t(workgroups.size());
     if (groups > 0) {
         cull_.use();

@@ -1,5 +1,6 @@
 // Building, uploading and evicting base volume meshes.
 #include "hexlod/lod/volume_cache.h"
+#include "hexlod/lod/lod1_elements.h"
 #include "hexlod/render/base_volume_mesh.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/mesh_vertex_format.h"
@@ -12,8 +13,15 @@ namespace {
 
 void release(VolumeMesh& mesh) {
     gl::glDeleteVertexArrays(1, &mesh.vao);
-    gl::glDeleteBuffers(1, &mesh.vertexBuffer);
-    gl::glDeleteBuffers(1, &mesh.indexBuffer);
+    for (uint32_t buffer : {mesh.vertexBuffer, mesh.indexBuffer, mesh.elementBuffer, mesh.parameterBuffer})
+        if (buffer) gl::glDeleteBuffers(1, &buffer);
+}
+
+uint32_t storage(const void* data, size_t bytes) {
+    uint32_t buffer = 0;
+    gl::glCreateBuffers(1, &buffer);
+    gl::glNamedBufferStorage(buffer, GLsizeiptr(std::max<size_t>(bytes, 4)), bytes ? data : nullptr, 0);
+    return buffer;
 }
 
 } // namespace
@@ -52,21 +60,23 @@ const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset) {
         return it->second;
     }
     const auto start = std::chrono::steady_clock::now();
-    const render::TerminalMesh shell = render::buildBaseVolumes(catalog_.expandExtruded(batch), inset);
+    const grammar::ExtrudedSet extruded = catalog_.expandExtruded(batch);
+    const render::TerminalMesh shell = render::buildBaseVolumes(extruded, inset);
     VolumeMesh mesh;
     mesh.cellOrigin = catalog_.cellOrigin(catalog_.batch(batch).cell);
+    mesh.grammar = catalog_.batch(batch).grammar;
+    if (inset == 0.0f) {
+        const std::vector<GpuLod1Element> elements = packLod1Elements(extruded, catalog_.scene().config.seed);
+        mesh.elementBuffer = storage(elements.data(), elements.size() * sizeof(GpuLod1Element));
+        mesh.parameterBuffer =
+            storage(extruded.parameters.data(), extruded.parameters.size() * sizeof(float));
+        mesh.bytes += elements.size() * sizeof(GpuLod1Element) + extruded.parameters.size() * sizeof(float);
+    }
     mesh.lastUsed = frame_;
     mesh.indexCount = uint32_t(shell.indices.size());
-    mesh.bytes = shell.byteSize();
-    gl::glCreateBuffers(1, &mesh.vertexBuffer);
-    gl::glNamedBufferStorage(
-        mesh.vertexBuffer,
-        GLsizeiptr(std::max<size_t>(shell.vertices.size(), 1) * sizeof(render::MeshVertex)),
-        shell.vertices.empty() ? nullptr : shell.vertices.data(), 0);
-    gl::glCreateBuffers(1, &mesh.indexBuffer);
-    gl::glNamedBufferStorage(mesh.indexBuffer,
-                             GLsizeiptr(std::max<size_t>(shell.indices.size(), 1) * sizeof(uint32_t)),
-                             shell.indices.empty() ? nullptr : shell.indices.data(), 0);
+    mesh.bytes += shell.byteSize();
+    mesh.vertexBuffer = storage(shell.vertices.data(), shell.vertices.size() * sizeof(render::MeshVertex));
+    mesh.indexBuffer = storage(shell.indices.data(), shell.indices.size() * sizeof(uint32_t));
     gl::glCreateVertexArrays(1, &mesh.vao);
     gl::glVertexArrayVertexBuffer(mesh.vao, 0, mesh.vertexBuffer, 0, sizeof(render::MeshVertex));
     gl::glVertexArrayElementBuffer(mesh.vao, mesh.indexBuffer);

@@ -18,8 +18,16 @@ constexpr uint32_t kWallColours[8] = {
 };
 constexpr uint32_t kRoofColour = rgba8(60, 58, 56);
 
+// Vertex ranges of the walls and the element each shows, to be written into the uv of the
+// finished mesh (the builder's own uv projection runs in finish()).
+struct WallTag {
+    size_t firstVertex, vertexCount;
+    uint32_t element;
+};
+
 // One storey band of a building: its faces in footprint-edge order.
-void band(MeshBuilder& b, std::vector<const grammar::ExtrudedElement*> faces, float inset, uint32_t wall) {
+void band(MeshBuilder& b, const grammar::ExtrudedSet& set, std::vector<const grammar::ExtrudedElement*> faces,
+          float inset, uint32_t wall, std::vector<WallTag>& tags) {
     std::sort(faces.begin(), faces.end(), [](const auto* l, const auto* r) { return l->atom < r->atom; });
     std::vector<glm::vec2> bottom, top;
     std::vector<float> bottomZ, topZ;
@@ -37,8 +45,11 @@ void band(MeshBuilder& b, std::vector<const grammar::ExtrudedElement*> faces, fl
     for (size_t i = 0; i < n; ++i) {
         const size_t j = (i + 1) % n;
         const glm::vec2 edge = bottom[j] - bottom[i];
+        const size_t before = b.vertexCount();
         b.quad({bottom[i], bottomZ[i]}, {bottom[j], bottomZ[j]}, {top[j], topZ[j]}, {top[i], topZ[i]},
                {edge.y, -edge.x, 0.0f}, wall);
+        if (n == faces.size())
+            tags.push_back({before, b.vertexCount() - before, uint32_t(faces[i] - set.elements.data())});
     }
     const std::vector<uint32_t> triangles = triangulatePolygon(top);
     for (size_t t = 0; t < triangles.size(); t += 3) {
@@ -57,6 +68,7 @@ uint32_t wallMaterialColour(uint16_t material) {
 
 TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset) {
     MeshBuilder b(glm::vec3(1.0f)); // metres stay metres
+    std::vector<WallTag> tags;
     for (const grammar::ExtrudedBuilding& building : set.buildings) {
         // Bands keyed by stop rule and elevation in millimetres.
         std::map<std::pair<uint32_t, long long>, std::vector<const grammar::ExtrudedElement*>> bands;
@@ -67,10 +79,17 @@ TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset) {
         }
         for (auto& [key, faces] : bands) {
             if (faces.size() >= 3)
-                band(b, std::move(faces), inset, wallMaterialColour(building.wallMaterial));
+                band(b, set, std::move(faces), inset, wallMaterialColour(building.wallMaterial), tags);
         }
     }
-    return b.finish("base_volume", "extruded set");
+    TerminalMesh mesh = b.finish("base_volume", "extruded set");
+    // uv: (element index, 1) on walls, (-1, 0) elsewhere (caps): LOD1 resumes the grammar of
+    // the element a wall pixel shows.
+    for (MeshVertex& v : mesh.vertices) v.uv = glm::vec2(-1.0f, 0.0f);
+    for (const WallTag& tag : tags)
+        for (size_t k = 0; k < tag.vertexCount; ++k)
+            mesh.vertices[tag.firstVertex + k].uv = glm::vec2(float(tag.element), 1.0f);
+    return mesh;
 }
 
 } // namespace hexlod::render

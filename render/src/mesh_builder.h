@@ -118,6 +118,8 @@ public:
                      const std::function<float(float, float)>& z, uint32_t rgba);
 
     // Unit scope space, bounds and hash; names the shape.
+    // Vertices so far, e.g. to tag the ones a call adds.
+    size_t vertexCount() const { return vertices_.size(); }
     TerminalMesh finish(const std::string& shape, const std::string& source) const;
 
 private:

@@ -62,13 +62,14 @@ grammar::ExtrudedSet steppedTower() {
         for (uint32_t i = 0; i < 4; ++i) {
             const glm::vec2 a = corners[i], b = corners[(i + 1) % 4];
             set.elements.push_back({glm::vec3(a, z), glm::vec3(glm::normalize(b - a), 0.0f),
-                                    glm::vec3(0, 0, 1), glm::vec2(glm::length(b - a), height), rule, i});
+                                    glm::vec3(0, 0, 1), glm::vec2(glm::length(b - a), height), rule, i, 0, 0,
+                                    1, 0, 1, 0, 0});
         }
     };
     band(0.0f, 0.0f, 30.0f, 1);
     band(2.0f, 30.0f, 20.0f, 1);
-    set.elements.push_back(
-        {glm::vec3(0.0f, 0.0f, 30.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec2(20, 0), 2, 0});
+    set.elements.push_back({glm::vec3(0.0f, 0.0f, 30.0f), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0),
+                            glm::vec2(20, 0), 2, 0, 0, 0, 1, 0, 1, 0, 0});
     grammar::ExtrudedBuilding building;
     building.elementCount = uint32_t(set.elements.size());
     building.height = 50.0f;

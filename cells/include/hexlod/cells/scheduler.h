@@ -11,8 +11,8 @@
 //   sets. A hysteresis band keeps a hovering camera from thrashing: Extruded becomes Terminals
 //   above maxSSE * (1 + hysteresis), Terminals becomes Extruded below maxSSE * (1 - hysteresis),
 //   and in between a cell keeps its previous LOD (every cell starts Extruded).
-// - forcedLod, when set, replaces that choice for every cell. Tree batches of a cell farther
-//   than treeTerminalDistance are left out of it (trees are billboards there).
+// - forcedLod, when set, replaces that choice for every cell. Tree batches of a cell whose
+//   trees would be acceptable as billboards (treeGeometricError) are left out of it.
 // - Missing batches (not resident in the cache, not being generated) of visible Terminals cells
 //   are queued by sse, highest first. Then come prefetch requests: the camera position is
 //   extrapolated by its velocity (from the previous update) over prefetchSeconds, and the
@@ -69,10 +69,11 @@ struct SchedulerOptions {
     // Every cell takes this LOD whatever its error: the all-LOD4 reference and the forced-LOD
     // renders of the error reports.
     std::optional<CellLod> forcedLod;
-    // Tree batches of a Terminals cell are wanted only within this distance (metres; 0: no
-    // limit): further away trees are billboards, and their terminal sets (most of a city's
-    // terminals) are neither generated nor drawn.
-    double treeTerminalDistance = 0.0;
+    // Tree batches of a Terminals cell are wanted only while a tree drawn as its billboard,
+    // of this geometric error (metres), would show (sse above maxScreenSpaceError; 0: always):
+    // further away trees are billboards, and their terminal sets (most of a city's terminals)
+    // are neither generated nor drawn.
+    double treeGeometricError = 0.0;
 };
 
 struct CellDecision {
@@ -82,7 +83,7 @@ struct CellDecision {
     CellLod lod = CellLod::Extruded;
     std::vector<uint32_t> ready;     // Terminals only: batches resident in the cache
     std::vector<uint32_t> requested; // Terminals only: the other batches (queued or generating)
-    bool treesAsTerminals = false;   // Terminals only: within treeTerminalDistance, its tree batches count
+    bool treesAsTerminals = false;   // its trees are wanted as terminals (see treeGeometricError)
 };
 
 struct FrameDecision {
@@ -128,7 +129,7 @@ private:
 
     CellLod nextLod(CellLod previous, double sse) const;
     bool isTreeBatch(uint32_t batch) const;
-    bool wantsTrees(double distance) const;
+    bool wantsTrees(double distance, const Camera& camera) const;
     double screenSpaceError(double distance, const Camera& camera) const;
     // Queues the batch unless the cache holds it; true when it does.
     bool requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue);

@@ -18,6 +18,11 @@ struct ExtrudedElement {
     glm::vec2 size{0.0f};
     uint32_t rule = 0; // the stop rule, where LOD1 resumes the grammar
     uint32_t atom = 0; // footprint edge it came from
+    // The derivation state LOD1 needs to resume exactly where expansion went on: the scope's
+    // position key (its random picks) and the accessors expressions read.
+    uint64_t key = 0;
+    int32_t floor = 0, floors = 1, index = 0, count = 1;
+    uint16_t level = 0, depth = 0;
 };
 
 struct ExtrudedBuilding {

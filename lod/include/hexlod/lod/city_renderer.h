@@ -20,6 +20,7 @@
 #include "hexlod/lod/scene_impostors.h"
 #include "hexlod/lod/shape_table.h"
 #include "hexlod/lod/terminal_arena.h"
+#include "hexlod/lod/tree_pass.h"
 #include "hexlod/lod/volume_cache.h"
 #include "hexlod/render/framebuffer.h"
 #include "hexlod/scene/camera_path.h"
@@ -46,7 +47,9 @@ struct CityRendererOptions {
     uint64_t volumeBudgetBytes = uint64_t(256) << 20; // base volume meshes
     double transitionBand = 0.15;                     // share of each LOD's range that blends into the next
     uint32_t parallaxIterations = 2;                  // LOD3
-    double treeTerminalDistance = 250.0;              // trees farther away are billboards
+    // Trees are geometry while their billboard's error would show: this error in metres, or
+    // (negative) the profile's LOD3 error.
+    double treeGeometricError = -1.0;
     uint32_t schedulerWorkers = 0;   // 0: batches are generated in the frame that needs them (deterministic)
     uint32_t maxBatchesPerFrame = 0; // 0: no cap
 };
@@ -61,9 +64,10 @@ struct FrameStats {
     std::array<uint64_t, 5> terminalsPerLod{}; // LOD2..LOD4 drawn terminals (0 and 1 unused)
     std::array<uint32_t, 5> cellsPerLod{};     // cells in view: 0 and 1 extruded, 4 with terminal sets
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
-    uint64_t cacheBytes = 0;    // terminal sets in the cache's memory tier
-    uint64_t gpuBytes = 0;      // arena, draw lists, meshes, base volumes, frame target
-    uint64_t impostorBytes = 0; // impostor textures
+    uint32_t treeBillboards = 0; // submitted (near ones are dropped on the GPU)
+    uint64_t cacheBytes = 0;     // terminal sets in the cache's memory tier
+    uint64_t gpuBytes = 0;       // arena, draw lists, meshes, base volumes, frame target
+    uint64_t impostorBytes = 0;  // impostor textures
     uint64_t residentBytes() const { return cacheBytes + gpuBytes + impostorBytes; }
 };
 
@@ -80,12 +84,18 @@ public:
     FrameStats render(const scene::CameraPose& pose, double timeSeconds, double nearPlane, double farPlane);
     render::Image readColor() const { return target_.readColor(0); }
     const CityRendererOptions& options() const { return options_; }
+    // What the renderer compiled: "LOD1 shaders: 2 grammars".
+    std::string summary() const;
 
 private:
     struct Programs;
+    struct VolumeDraw {
+        const VolumeMesh* mesh;
+        bool textured;   // LOD0's wall texture (not under terminals)
+        float lod0Blend; // 1: LOD0; below 1: LOD1, blending into LOD0
+    };
     void drawTerminals(FrameStats& stats);
-    void drawVolumes(const std::vector<std::pair<const VolumeMesh*, bool>>& volumes, const glm::dvec3& camera,
-                     FrameStats& stats);
+    void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats);
 
     cells::BatchCatalog& catalog_;
     cache::TerminalSetCache& cache_;
@@ -100,9 +110,12 @@ private:
     ShapeTable shapes_;
     VolumeCache volumes_;
     GroundPass ground_;
+    TreePass trees_;
+    double treeError_ = 0.0; // metres; 0: trees are always geometry
     impostor::ImpostorTextures impostorTextures_;
     uint32_t sphereBuffer_ = 0, frameBuffer_ = 0, lod4Vao_ = 0, impostorVao_ = 0;
     uint32_t centralView_ = 0;
+    std::vector<uint8_t> shapeTree_; // per global shape: part of a tree
     uint64_t frame_ = 0;
 };
 

@@ -26,6 +26,11 @@ struct CullInputs {
     std::vector<CullBatchInput> batches;
     uint32_t shapeCount = 0;            // global shapes
     std::vector<uint8_t> shapeImpostor; // per global shape: 1 when it has an impostor
+    std::vector<uint8_t> shapeTree;     // per global shape: 1 when it is part of a tree
+    // By tree id: the tree's position relative to the trees' origin (xyz) and its species (w);
+    // needed when a shape is a tree shape. treeBuffer is the same on the GPU.
+    const std::vector<glm::vec4>* trees = nullptr;
+    uint32_t treeBuffer = 0;
     shared::CullFrame frame{};
     glm::dvec3 camera{0.0};
 };
@@ -36,6 +41,11 @@ struct CullInputs {
 // `impostors` false forces LOD4 everywhere (the all-LOD4 reference).
 shared::CullFrame makeCullFrame(const cells::Frustum& frustum, const scene::LodProfile& profile, double fovY,
                                 uint32_t viewportHeight, double transitionBand, bool impostors);
+
+// Sets frame.trees: trees within `billboardDistance` of the camera are geometry, farther ones
+// billboards (a negative distance: never billboards).
+void setTreeCut(shared::CullFrame& frame, double billboardDistance, const glm::dvec3& treeOrigin,
+                const glm::dvec3& camera);
 
 // The distance from which a LOD of geometric error `error` is enough.
 double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,

@@ -51,11 +51,14 @@ struct CullFrame {
     vec4 planes[6];   // camera-relative frustum planes: inside when dot(xyz, p) + w >= 0
     vec4 lodDistance; // x, y: squared distances from which LOD3, LOD2 are enough; z: relative
                       // transition band; w: 1 when impostors may be used at all
+    vec4 trees;       // x: squared distance from which a tree is its billboard (< 0: never);
+                      // yzw: the origin of tree positions minus the camera
 };
 
 // Per global shape (std430 uvec4): x, the first slot of its draw lists; y, their capacity
 // (LOD4 entries fill from the front, impostor entries, LOD3 and LOD2, from the back); z, 1 when
-// it has an impostor. Counters per shape (uvec4): LOD4, impostor, LOD3, LOD2 entries.
+// it has an impostor; w, 1 when it is part of a tree (whose terminal's building id is then the
+// tree's id). Counters per shape (uvec4): LOD4, impostor, LOD3, LOD2 entries.
 
 // One resident batch, as the pass sees it (std430, 16 bytes).
 struct CullBatch {
@@ -115,6 +118,15 @@ HEXLOD_FN void terminalAxes(GpuTerminal t, HEXLOD_OUT(vec3) axisX, HEXLOD_OUT(ve
     axisX = vec3(xAxis0, xAxis1, xAxis2);
     axisY = vec3(yAxis0, yAxis1, yAxis2);
     axisZ = vec3(zAxis0, zAxis1, zAxis2);
+}
+
+// A tree at `treePosition` (relative to the trees' origin) far enough away to be drawn as its
+// species billboard: its terminals are culled, and the billboard pass draws it instead. Both
+// passes decide with this function, so a tree is always exactly one of the two.
+HEXLOD_FN bool treeIsBillboard(vec3 treePosition, CullFrame frame) {
+    if (frame.trees.x < 0.0f) return false;
+    HEXLOD_PRECISE vec3 p = treePosition + vec3(frame.trees.y, frame.trees.z, frame.trees.w);
+    return dot3(p, p) >= frame.trees.x;
 }
 
 // Frustum, backface and LOD for one terminal whose corner lies at `corner` relative to the

@@ -41,6 +41,7 @@ public:
     const DrawListLayout& layout() const { return layout_; }
     uint32_t shapeCount() const { return shapeCount_; }
     uint32_t listBuffer() const { return buffers_[kLists].id; }
+    uint32_t frameBuffer() const { return buffers_[kFrame].id; } // the CullFrame uniform block
     uint32_t commandBuffer() const { return buffers_[kCommands].id; }
     uint64_t byteSize() const; // GPU memory of the pass's buffers
 

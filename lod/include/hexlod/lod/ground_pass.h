@@ -25,6 +25,7 @@ public:
     // Returns the triangles drawn.
     uint64_t draw(const render::ShaderProgram& program, const glm::dvec3& camera) const;
     uint64_t byteSize() const { return bytes_; }
+    const glm::dvec3& origin() const { return origin_; }
 
 private:
     uint32_t groundVao_ = 0, roadVao_ = 0, buffers_[4] = {0, 0, 0, 0};

@@ -13,6 +13,9 @@ namespace hexlod::lod {
 struct VolumeMesh {
     uint32_t vao = 0, vertexBuffer = 0, indexBuffer = 0;
     uint32_t indexCount = 0;
+    // LOD1's view of the same batch (walls at inset 0 only): its elements and parameters.
+    uint32_t elementBuffer = 0, parameterBuffer = 0;
+    uint32_t grammar = 0;
     uint64_t bytes = 0;
     glm::dvec3 cellOrigin{0.0};
     uint64_t lastUsed = 0;

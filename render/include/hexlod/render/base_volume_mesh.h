@@ -20,6 +20,8 @@ uint32_t wallMaterialColour(uint16_t material);
 // unit scope space) and normals are unit world normals. `inset` moves the walls and caps that
 // far inwards (0 for LOD0; about half a metre under terminals, so that recessed glass stays in
 // front of the shell instead of z-fighting with it); a band too small to inset keeps its outline.
+// A wall's uv is (index of its element in set.elements, 1), every other vertex's (-1, 0): LOD1
+// resumes that element's grammar per pixel.
 TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset);
 
 } // namespace hexlod::render

@@ -1,0 +1,34 @@
+#version 450 core
+// Ray-casts a tree's species impostor (full sphere of views, tree space = world axes at the
+// trunk's base), with the same four-view reconstruction as LOD3.
+#include "frame.glsl"
+
+uniform sampler2DArray impostorAlbedo, impostorNormalDepth;
+uniform usampler2D impostorTableViews;
+uniform sampler2D impostorTableWeights;
+uniform uvec4 impostorLayout;
+#include "impostor_views.glsl"
+
+layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; };
+
+in vec3 vPosition;
+flat in vec3 vBase;
+flat in uint vSpecies;
+layout(location = 0) out vec4 colour;
+
+void main() {
+    vec4 sphere = spheres[vSpecies];
+    vec3 forward = -normalize(vPosition);
+    vec3 q = (vPosition - vBase - sphere.xyz) / sphere.w;
+    vec3 rayOrigin = q - dot(q, forward) * forward;
+    uvec4 views;
+    vec4 weights;
+    impostorViews(forward, views, weights);
+    vec4 normalDepth;
+    vec4 albedo = impostorReconstruct(vSpecies, rayOrigin, forward, views, weights, 1u, normalDepth);
+    if (albedo.a < 0.5) discard;
+    vec3 world = vBase + sphere.xyz + sphere.w * (rayOrigin + normalDepth.w * forward);
+    vec4 clip = viewProjection * vec4(world, 1.0);
+    gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0);
+    colour = vec4(shade(albedo.rgb, normalize(normalDepth.xyz), world), 1.0);
+}

@@ -1,0 +1,34 @@
+#version 450 core
+// One billboard per tree that the frame's tree cut (treeIsBillboard, shared with the cull pass)
+// leaves to its species impostor: a camera-facing square over the impostor's bounding sphere.
+#include "gpu_types.h"
+#include "cull_shared.h"
+#include "frame.glsl"
+
+layout(std140, binding = 0) uniform CullFrameBlock { CullFrame cull; };
+layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; }; // per species
+
+layout(location = 10) in vec4 tree; // position relative to the trees' origin, species (-1: none)
+uniform uint allBillboards;
+
+out vec3 vPosition;
+flat out vec3 vBase;
+flat out uint vSpecies;
+
+void main() {
+    if (tree.w < 0.0 || (allBillboards == 0u && !treeIsBillboard(tree.xyz, cull))) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: nothing drawn
+        return;
+    }
+    vSpecies = uint(tree.w);
+    vec4 sphere = spheres[vSpecies];
+    vBase = tree.xyz + cull.trees.yzw;
+    vec3 centre = vBase + sphere.xyz;
+    vec3 toCamera = -normalize(centre);
+    vec3 up = abs(toCamera.z) > 0.999 ? vec3(0, 1, 0) : vec3(0, 0, 1);
+    vec3 right = normalize(cross(up, toCamera));
+    up = cross(toCamera, right);
+    vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
+    vPosition = centre + (corner.x * right + corner.y * up) * sphere.w;
+    gl_Position = viewProjection * vec4(vPosition, 1.0);
+}
