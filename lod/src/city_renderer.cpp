@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -70,6 +71,25 @@ glm::mat4 reversedPerspective(double fovY, double aspect, double nearPlane, doub
     p[2][3] = -1.0;
     p[3][2] = nearPlane * farPlane / (farPlane - nearPlane);
     return glm::mat4(p);
+}
+
+// The pose with a unit forward and an up orthogonal to it (world z, or y when looking along
+// z), whatever up the caller gave; a forward that is not finite looks north.
+scene::CameraPose usablePose(scene::CameraPose pose) {
+    const bool finiteForward = std::isfinite(pose.forward.x) && std::isfinite(pose.forward.y) &&
+                               std::isfinite(pose.forward.z) && glm::length(pose.forward) > 0.0;
+    pose.forward = finiteForward ? glm::normalize(pose.forward) : glm::dvec3(0, 1, 0);
+    glm::dvec3 up = pose.up;
+    if (!(std::isfinite(up.x) && std::isfinite(up.y) && std::isfinite(up.z))) up = glm::dvec3(0, 0, 1);
+    up -= glm::dot(up, pose.forward) * pose.forward;
+    if (glm::length(up) < 1e-6) {
+        up = std::abs(pose.forward.z) > 0.9999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+        up -= glm::dot(up, pose.forward) * pose.forward;
+    }
+    pose.up = glm::normalize(up);
+    if (!(pose.fovY > 1e-4) || !(pose.fovY < 3.1414))
+        pose.fovY = std::clamp(std::isfinite(pose.fovY) ? pose.fovY : 1.0, 1e-4, 3.1414);
+    return pose;
 }
 
 } // namespace
@@ -229,9 +249,10 @@ bool CityRenderer::init(std::string& error) {
     return true;
 }
 
-FrameStats CityRenderer::render(const scene::CameraPose& pose, double timeSeconds, double nearPlane,
+FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSeconds, double nearPlane,
                                 double farPlane) {
     const auto frameStart = Clock::now();
+    const scene::CameraPose pose = usablePose(given);
     FrameStats stats;
     stats.frame = frame_++;
     const double aspect = double(options_.width) / double(options_.height);

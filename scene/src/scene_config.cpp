@@ -248,6 +248,13 @@ bool parseSceneConfig(std::string_view text, const std::string& file, const std:
         scene.name = root.text("name", std::filesystem::path(file).stem().string());
         scene.seed = root.whole("seed", 1, std::numeric_limits<int64_t>::max());
         scene.cellSize = root.number("cell_size", scene.cellSize, 1.0, 100000.0);
+        if (const Json* origin = root.find("origin")) {
+            if (!origin->is_array() || origin->size() != 3)
+                Fields::fail("origin", "expected [x, y, z] in metres");
+            for (size_t i = 0; i < 3; ++i)
+                scene.origin[i] =
+                    Fields::checkedNumber((*origin)[i], "origin[" + std::to_string(i) + "]", -1e9, 1e9);
+        }
         readGrammars(root, baseDir, scene);
         readSources(root, baseDir, scene);
         readOverrides(root, scene);

@@ -71,7 +71,8 @@ struct SceneConfig {
     std::string name;
     std::string file; // the config's own path, for messages
     uint64_t seed = 1;
-    double cellSize = 250.0; // hexagon circumradius, metres
+    double cellSize = 250.0;                     // hexagon circumradius, metres
+    std::array<double, 3> origin{0.0, 0.0, 0.0}; // world metres added to every building, tree and street
     std::vector<GrammarEntry> grammars;
     std::vector<BuildingSource> sources;
     std::vector<BuildingOverride> overrides;

@@ -1,0 +1,212 @@
+// LOD1's per-pixel grammar: the CPU walk finds the terminals the terminal set holds, and the
+// GLSL interpreter finds what the CPU walk finds, pixel for pixel.
+#include "../render/gl_fixture.h"
+#include "test_city.h"
+
+#include "hexlod/lod/gpu_cull.h"
+#include "hexlod/lod/lod1_codegen.h"
+#include "hexlod/lod/lod1_elements.h"
+#include "hexlod/lod/lod1_query.h"
+#include "hexlod/render/base_volume_mesh.h"
+#include "hexlod/render/framebuffer.h"
+#include "hexlod/render/mesh_vertex_format.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <random>
+
+namespace hexlod::lod {
+namespace {
+
+// The building of an element of `set`.
+uint32_t buildingOf(const grammar::ExtrudedSet& set, uint32_t element) {
+    for (uint32_t b = 0; b < set.buildings.size(); ++b) {
+        const auto& building = set.buildings[b];
+        if (element >= building.firstElement && element < building.firstElement + building.elementCount)
+            return b;
+    }
+    return 0;
+}
+
+class Lod1Test : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { city_ = new testing::TestCity(testing::makeCity(60, 0)); }
+    static void TearDownTestSuite() { delete city_; }
+    static testing::TestCity* city_;
+};
+testing::TestCity* Lod1Test::city_ = nullptr;
+
+TEST_F(Lod1Test, EveryTerminalTheWalkFindsIsInTheTerminalSet) {
+    const cells::BatchCatalog& catalog = *city_->catalog;
+    std::mt19937 random(9);
+    uint64_t samples = 0, terminals = 0, matched = 0;
+    for (uint32_t b = 0; b < catalog.batchCount(); ++b) {
+        const grammar::BatchResult result = catalog.expand(b);
+        const grammar::CompiledGrammar& g = catalog.grammar(catalog.batch(b).grammar).grammar;
+        std::vector<grammar::Terminal> set;
+        for (const auto& record : result.terminals.records) set.push_back(grammar::unpackTerminal(record));
+        const grammar::ExtrudedSet& extruded = result.extruded;
+        for (uint32_t e = 0; e < extruded.elements.size(); ++e) {
+            const grammar::ExtrudedElement& element = extruded.elements[e];
+            if (!(element.size.x > 0.5f && element.size.y > 0.5f)) continue; // roof edges: no face
+            const uint32_t building = buildingOf(extruded, e);
+            std::uniform_real_distribution<float> u(0.0f, element.size.x), v(0.0f, element.size.y);
+            for (int k = 0; k < 12; ++k) {
+                const glm::vec2 point(u(random), v(random));
+                const Lod1Hit hit = lod1Query(g, extruded, building, e, point, catalog.scene().config.seed);
+                ++samples;
+                if (hit.outcome != Lod1Outcome::Terminal) continue;
+                ++terminals;
+                const glm::vec3 corner =
+                    element.origin + element.axisX * hit.scopeOrigin.x + element.axisY * hit.scopeOrigin.y;
+                for (const grammar::Terminal& t : set) {
+                    if (t.shape != hit.shape || t.building != extruded.buildings[building].building) continue;
+                    if (glm::length(t.position - corner) > 2e-3f * std::max(1.0f, glm::length(corner)))
+                        continue;
+                    if (std::abs(t.size.x - hit.scopeSize.x) > 2e-3f * hit.scopeSize.x + 1e-3f) continue;
+                    if (std::abs(t.size.y - hit.scopeSize.y) > 2e-3f * hit.scopeSize.y + 1e-3f) continue;
+                    ++matched;
+                    break;
+                }
+            }
+        }
+    }
+    ASSERT_GT(samples, 1000u);
+    // Facades are tiled by terminals (walls included), so nearly every point finds one...
+    EXPECT_GT(double(terminals) / double(samples), 0.9) << terminals << " of " << samples;
+    // ...and every one it finds is a terminal of the set, at the same place and size.
+    EXPECT_EQ(matched, terminals);
+}
+
+TEST_F(Lod1Test, BytecodeTranslatesToGlslInTheSameOrder) {
+    const grammar::CompiledGrammar& g = city_->catalog->grammar(1).grammar; // residential
+    std::string all = generateLod1Grammar(g);
+    EXPECT_NE(all.find("float lod1Argument("), std::string::npos);
+    EXPECT_NE(all.find("lod1RuleKey"), std::string::npos);
+    // Every argument becomes one case.
+    for (size_t a = 0; a < g.arguments.size(); ++a)
+        EXPECT_NE(all.find("case " + std::to_string(a) + "u: return"), std::string::npos) << a;
+    // rand() keeps its call site as the key's last word.
+    bool sawRandom = false;
+    for (const grammar::Expression& e : g.expressions) {
+        const std::string glsl = expressionToGlsl(g, e);
+        if (glsl.find("lod1Combine(randomKey") != std::string::npos) sawRandom = true;
+    }
+    EXPECT_TRUE(sawRandom);
+}
+
+class Lod1GpuTest : public render::GlTest {};
+
+// Draws one batch's walls face-on with LOD1 and compares, for every covered pixel, what the
+// GLSL walk found with the CPU walk at the point the pixel reports.
+TEST_F(Lod1GpuTest, TheGlslWalkFindsWhatTheCpuWalkFinds) {
+    testing::TestCity city = testing::makeCity(30, 0);
+    const cells::BatchCatalog& catalog = *city.catalog;
+    uint32_t batch = 0;
+    while (batch < catalog.batchCount() &&
+           catalog.grammar(catalog.batch(batch).grammar).name != "residential")
+        ++batch;
+    ASSERT_LT(batch, catalog.batchCount());
+    const uint32_t grammarIndex = catalog.batch(batch).grammar;
+    const grammar::CompiledGrammar& g = catalog.grammar(grammarIndex).grammar;
+    const grammar::ExtrudedSet extruded = catalog.expandExtruded(batch);
+    const render::TerminalMesh shell = render::buildBaseVolumes(extruded, 0.0f);
+    const std::vector<GpuLod1Element> elements = packLod1Elements(extruded, catalog.scene().config.seed);
+    ASSERT_FALSE(elements.empty());
+
+    std::string error;
+    render::ShaderLibrary library = lodShaderLibrary();
+    library.add("lod1_grammar.glsl", generateLod1Grammar(g));
+    render::ShaderProgram program = render::ShaderProgram::build(
+        library, {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "lod1.frag"}},
+        "", error);
+    ASSERT_TRUE(program.valid()) << error;
+
+    // Look at the first element's facade straight on, from 40 m in front of its middle.
+    const grammar::ExtrudedElement& first = extruded.elements[0];
+    const glm::vec3 normal = glm::normalize(glm::cross(first.axisX, first.axisY));
+    const glm::vec3 middle =
+        first.origin + first.axisX * (0.5f * first.size.x) + first.axisY * (0.5f * first.size.y);
+    const glm::vec3 eye = middle + normal * 40.0f;
+    const uint32_t size = 128;
+    render::Framebuffer target;
+    ASSERT_TRUE(render::Framebuffer::create({size, size, {GL_RGBA16F, GL_RGBA32F}, true}, target, error))
+        << error;
+    // Frame block: camera-relative (the eye at the origin) view and projection.
+    struct {
+        glm::mat4 viewProjection;
+        glm::vec4 sun, sunColour, sky, viewport;
+    } frame;
+    frame.viewProjection = glm::perspective(0.9f, 1.0f, 1.0f, 500.0f) *
+                           glm::lookAt(glm::vec3(0.0f), middle - eye, glm::vec3(0, 0, 1));
+    frame.sun = glm::vec4(0, 0, 1, 0.4f);
+    frame.sunColour = glm::vec4(1.0f);
+    frame.sky = glm::vec4(0.5f, 0.5f, 0.5f, 0.0f);
+    frame.viewport = glm::vec4(float(size), float(size), 1.0f / float(size), 1.0f / float(size));
+    GLuint buffers[5];
+    gl::glCreateBuffers(5, buffers);
+    gl::glNamedBufferStorage(buffers[0], sizeof frame, &frame, 0);
+    gl::glNamedBufferStorage(buffers[1], GLsizeiptr(elements.size() * sizeof(GpuLod1Element)),
+                             elements.data(), 0);
+    gl::glNamedBufferStorage(buffers[2], GLsizeiptr(extruded.parameters.size() * sizeof(float)),
+                             extruded.parameters.data(), 0);
+    gl::glNamedBufferStorage(buffers[3], GLsizeiptr(shell.vertices.size() * sizeof(render::MeshVertex)),
+                             shell.vertices.data(), 0);
+    gl::glNamedBufferStorage(buffers[4], GLsizeiptr(shell.indices.size() * sizeof(uint32_t)),
+                             shell.indices.data(), 0);
+    GLuint vao = 0;
+    gl::glCreateVertexArrays(1, &vao);
+    gl::glVertexArrayVertexBuffer(vao, 0, buffers[3], 0, sizeof(render::MeshVertex));
+    gl::glVertexArrayElementBuffer(vao, buffers[4]);
+    render::setMeshVertexFormat(vao, 0);
+    gl::glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers[0]);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, buffers[1]);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, buffers[2]);
+    target.bind();
+    target.clear(0, 0, 0, 0);
+    gl::glEnable(GL_DEPTH_TEST);
+    gl::glDepthFunc(GL_LESS);
+    program.use();
+    program.set("cellOffset", -eye);
+    program.set("lod0Blend", 0.0f);
+    program.set("shapeBase", 0u);
+    gl::glBindVertexArray(vao);
+    gl::glDrawElements(GL_TRIANGLES, GLsizei(shell.indices.size()), GL_UNSIGNED_INT, nullptr);
+    gl::glBindVertexArray(0);
+    render::Image ids = target.readColor(1);
+    gl::glDeleteVertexArrays(1, &vao);
+    gl::glDeleteBuffers(5, buffers);
+
+    // The point each pixel reports in the test output is recomputed here from its ray.
+    const glm::mat4 inverse = glm::inverse(frame.viewProjection);
+    uint64_t compared = 0, agreed = 0;
+    for (uint32_t y = 0; y < size; y += 3) {
+        for (uint32_t x = 0; x < size; x += 3) {
+            const float* id = ids.at(x, y);
+            if (id[0] == 0.0f) continue; // no wall, or a cap
+            // The ray through the pixel centre, intersected with the first element's plane.
+            const glm::vec2 ndc((x + 0.5f) / size * 2 - 1, 1 - (y + 0.5f) / size * 2);
+            glm::vec4 far = inverse * glm::vec4(ndc, 1.0f, 1.0f);
+            const glm::vec3 direction = glm::normalize(glm::vec3(far) / far.w);
+            const float t = glm::dot(first.origin - eye, normal) / glm::dot(direction, normal);
+            const glm::vec3 local = eye + direction * t - first.origin;
+            const glm::vec2 point(glm::dot(local, first.axisX), glm::dot(local, first.axisY));
+            if (point.x < 0.05f || point.y < 0.05f || point.x > first.size.x - 0.05f ||
+                point.y > first.size.y - 0.05f)
+                continue;
+            const Lod1Hit cpu =
+                lod1Query(g, extruded, buildingOf(extruded, 0), 0, point, catalog.scene().config.seed);
+            ++compared;
+            if (uint32_t(id[0]) == uint32_t(cpu.outcome) + 1 &&
+                (cpu.outcome != Lod1Outcome::Terminal || uint32_t(id[1]) == cpu.shape)) {
+                ++agreed;
+            }
+        }
+    }
+    ASSERT_GT(compared, 200u);
+    // Pixels on a boundary between two terminals may fall either side of it: allow 2 %.
+    EXPECT_GT(double(agreed) / double(compared), 0.98) << agreed << " of " << compared;
+}
+
+} // namespace
+} // namespace hexlod::lod
