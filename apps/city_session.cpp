@@ -2,6 +2,7 @@
 
 #include "hexlod/scene/scene_builder.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -74,7 +75,9 @@ int openRenderer(const std::string& command, const RenderSetup& setup, CitySessi
     lod::SceneImpostorOptions options;
     options.facadeLayout = {impostor::ViewSphere::Hemisphere, setup.impostorGrid, setup.impostorResolution,
                             2};
-    options.treeLayout = {impostor::ViewSphere::FullSphere, setup.impostorGrid, setup.impostorResolution, 2};
+    // Trees are larger on screen than a window or a ledge: their views get twice the texels.
+    options.treeLayout = {impostor::ViewSphere::FullSphere, setup.impostorGrid,
+                          std::min<uint32_t>(2 * setup.impostorResolution, 1024), 2};
     options.storeDirectory = setup.impostorStore;
     if (setup.progress) {
         options.progress = [](size_t done, size_t total, const std::string& name) {

@@ -34,8 +34,8 @@ int openCity(const std::string& command, const std::string& scenePath, CitySessi
 struct RenderSetup {
     render::GlBackend backend = render::GlBackend::Auto;
     uint32_t impostorGrid = 8;
-    uint32_t impostorResolution = 64;
-    std::string impostorStore; // empty: bake in memory only
+    uint32_t impostorResolution = 32; // texels per facade view; tree views get twice as many
+    std::string impostorStore;        // empty: bake in memory only
     bool impostors = true;
     bool progress = false; // a progress bar on stderr while baking
 };

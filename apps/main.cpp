@@ -1,5 +1,6 @@
 // hexlod: streams massive procedural cities with level of detail. Each subcommand lives in
 // its own file and registers itself here.
+#include "bake_command.h"
 #include "cells_command.h"
 #include "expand_command.h"
 #include "export_command.h"
@@ -22,6 +23,8 @@ int main(int argc, char** argv) {
     CLI::App* cellsCommand = hexlod::apps::registerCellsCommand(app, cells);
     hexlod::apps::ExportOptions exportOptions;
     CLI::App* exportCommand = hexlod::apps::registerExportCommand(app, exportOptions);
+    hexlod::apps::BakeOptions bake;
+    CLI::App* bakeCommand = hexlod::apps::registerBakeCommand(app, bake);
     hexlod::apps::WalkOptions walk;
     CLI::App* walkCommand = hexlod::apps::registerWalkCommand(app, walk);
     try {
@@ -33,6 +36,7 @@ int main(int argc, char** argv) {
     if (importCommand->parsed()) return hexlod::apps::runImportCommand(import);
     if (cellsCommand->parsed()) return hexlod::apps::runCellsCommand(cells);
     if (walkCommand->parsed()) return hexlod::apps::runWalkCommand(walk);
+    if (bakeCommand->parsed()) return hexlod::apps::runBakeCommand(bake);
     if (exportCommand->parsed()) return hexlod::apps::runExportCommand(exportOptions);
     return 0;
 }

@@ -14,7 +14,7 @@ namespace hexlod::apps {
 struct RenderOptions {
     uint32_t width = 0, height = 0; // 0: the camera path's viewport
     std::string backend = "auto";
-    uint32_t impostorGrid = 8, impostorResolution = 64;
+    uint32_t impostorGrid = 8, impostorResolution = 32;
     std::string impostorStore;
     uint32_t workers = 0;
 };

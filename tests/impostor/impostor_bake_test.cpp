@@ -9,6 +9,7 @@
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/image_io.h"
 #include "hexlod/render/image_metrics.h"
+#include "hexlod/render/terminal_mesh_library.h"
 
 #include <filesystem>
 #include <fstream>
@@ -270,6 +271,48 @@ TEST_F(ImpostorBakeTest, TheGpuReconstructionMatchesTheCpuOne) {
     }
     gl::glDeleteVertexArrays(1, &vao);
     EXPECT_GT(textures.byteSize(), uint64_t(atlas.layout.atlasSize()) * atlas.layout.atlasSize() * 16);
+}
+
+// The shipped residential window seen straight on: its statistics are those of a window (a
+// light frame around dark glass, the glass recessed), not of an empty or a garbled render.
+TEST_F(ImpostorBakeTest, TheProceduralWindowRendersAsAWindow) {
+    grammar::DiagnosticList diagnostics;
+    const grammar::CompiledGrammar residential = grammar::compileGrammarFile(
+        std::string(HEXLOD_CONFIGS_DIR) + "/grammars/residential.grammar", diagnostics);
+    ASSERT_FALSE(diagnostics.hasErrors()) << diagnostics.formatAll();
+    const grammar::CompiledGrammar* grammars[] = {&residential};
+    const render::TerminalMeshLibrary library(grammars);
+    const render::TerminalMesh& mesh = library.mesh(0, uint16_t(residential.findShape("window_casement")));
+    const BakeGeometry window = geometryFromMesh(mesh);
+    ViewLayout layout;
+    layout.grid = 8;
+    layout.viewResolution = 96;
+    Image albedo, normalDepth;
+    std::string error;
+    ASSERT_TRUE(baker.renderDirection(window, layout, glm::vec3(0, 0, 1), albedo, normalDepth, error))
+        << error;
+    double covered = 0, luminance = 0, dark = 0;
+    for (uint32_t y = 0; y < albedo.height; ++y) {
+        for (uint32_t x = 0; x < albedo.width; ++x) {
+            const float* a = albedo.at(x, y);
+            covered += a[3];
+            luminance += a[3] * (0.2126 * a[0] + 0.7152 * a[1] + 0.0722 * a[2]);
+            dark += a[3] > 0.5f && a[0] < 0.35f;
+        }
+    }
+    const uint32_t c = albedo.width / 2;
+    const double share = covered / double(albedo.width * albedo.height);
+    // The bounding sphere frames the window with room to spare for oblique views: it covers
+    // a fair part of the front view, neither nothing nor the whole square.
+    EXPECT_GT(share, 0.2);
+    EXPECT_LT(share, 0.8);
+    EXPECT_GT(luminance / covered, 0.2); // frames and sills are light...
+    EXPECT_GT(dark / covered, 0.2);      // ...and the glass between them is dark
+    // The glass lies behind the frame: the centre's depth is below the frame's at the edge.
+    float centreDepth = normalDepth.at(c, c)[3], edgeDepth = -2.0f;
+    for (uint32_t x = 0; x < albedo.width; ++x)
+        if (albedo.at(x, c)[3] > 0.5f) edgeDepth = std::max(edgeDepth, normalDepth.at(x, c)[3]);
+    EXPECT_LT(centreDepth, edgeDepth);
 }
 
 TEST_F(ImpostorBakeTest, EmptyAndFlatGeometryIsAnErrorNotACrash) {
