@@ -1,6 +1,7 @@
 // hexlod: streams massive procedural cities with level of detail. Each subcommand lives in
 // its own file and registers itself here.
 #include "bake_command.h"
+#include "bench_error_command.h"
 #include "cells_command.h"
 #include "expand_command.h"
 #include "export_command.h"
@@ -25,6 +26,11 @@ int main(int argc, char** argv) {
     CLI::App* exportCommand = hexlod::apps::registerExportCommand(app, exportOptions);
     hexlod::apps::BakeOptions bake;
     CLI::App* bakeCommand = hexlod::apps::registerBakeCommand(app, bake);
+    CLI::App* bench = app.add_subcommand("bench", "Benchmarks that print and plot their figures");
+    bench->require_subcommand(1);
+    hexlod::apps::BenchErrorOptions benchError;
+    CLI::App* benchErrorCommand = nullptr;
+    hexlod::apps::registerBenchErrorCommand(*bench, benchError, benchErrorCommand);
     hexlod::apps::WalkOptions walk;
     CLI::App* walkCommand = hexlod::apps::registerWalkCommand(app, walk);
     try {
@@ -37,6 +43,7 @@ int main(int argc, char** argv) {
     if (cellsCommand->parsed()) return hexlod::apps::runCellsCommand(cells);
     if (walkCommand->parsed()) return hexlod::apps::runWalkCommand(walk);
     if (bakeCommand->parsed()) return hexlod::apps::runBakeCommand(bake);
+    if (benchErrorCommand->parsed()) return hexlod::apps::runBenchErrorCommand(benchError);
     if (exportCommand->parsed()) return hexlod::apps::runExportCommand(exportOptions);
     return 0;
 }

@@ -12,6 +12,7 @@ void addRenderOptions(CLI::App& command, RenderOptions& o) {
                        "Folder of baked impostors (EXR), reused across runs");
     command.add_option("--workers", o.workers,
                        "Background generation threads (0: in the frame, deterministic)");
+    command.add_option("--samples", o.samples, "Samples per pixel (multisampling; 1 to the GL's maximum)");
 }
 
 bool makeRenderSetup(const RenderOptions& o, RenderSetup& setup, std::string& error) {
@@ -29,6 +30,10 @@ bool makeRenderSetup(const RenderOptions& o, RenderSetup& setup, std::string& er
     }
     if ((o.width == 0) != (o.height == 0) || o.width > 16384 || o.height > 16384) {
         error = "--width and --height: give both, each in [1, 16384]";
+        return false;
+    }
+    if (o.samples == 0 || o.samples > 64) {
+        error = "--samples: " + std::to_string(o.samples) + " is outside [1, 64]";
         return false;
     }
     setup.impostorGrid = o.impostorGrid;

@@ -17,6 +17,7 @@ struct RenderOptions {
     uint32_t impostorGrid = 8, impostorResolution = 32;
     std::string impostorStore;
     uint32_t workers = 0;
+    uint32_t samples = 1; // multisampling
 };
 
 void addRenderOptions(CLI::App& command, RenderOptions& options);

@@ -73,6 +73,7 @@ int runWalkCommand(const WalkOptions& o) {
     options.mode = mode;
     options.lod = profile;
     options.schedulerWorkers = o.render.workers;
+    options.samples = o.render.samples;
     lod::CityRenderer renderer(*session.catalog, *session.cache, *session.meshes, &session.impostors,
                                options);
     if (!renderer.init(error)) {

@@ -22,6 +22,7 @@ in vec3 vPosition;
 flat in vec3 vCorner, vAxisX, vAxisY, vAxisZ, vScope;
 flat in uint vShape;
 flat in float vTransition;
+uniform uint alphaToCoverage;
 layout(location = 0) out vec4 colour;
 
 // Scope-relative metres to the shape's nominal metres, per axis (a flat axis stays flat).
@@ -62,7 +63,8 @@ void main() {
         albedo = mix(a, albedo, blend);
         normalDepth = blend > 0.0 ? mix(nd, normalDepth, blend) : nd;
     }
-    if (albedo.a < 0.5) discard;
+    // With multisampling, coverage becomes the sample mask (alpha to coverage); else a cutout.
+    if (albedo.a < (alphaToCoverage != 0u ? 0.02 : 0.5)) discard;
 
     // The surface back in camera-relative world space, for lighting, fog and depth.
     vec3 surfaceNominal = sphere.xyz + sphere.w * (rayOrigin + normalDepth.w * forward);
@@ -73,5 +75,5 @@ void main() {
     vec4 clip = viewProjection * vec4(world, 1.0);
     gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0); // reversed-Z, zero-to-one clip depth
     vec3 n = mat3(vAxisX, vAxisY, vAxisZ) * scopeNormal(normalize(normalDepth.xyz), nominal, vScope);
-    colour = vec4(shade(albedo.rgb, n, world), 1.0);
+    colour = vec4(shade(albedo.rgb, n, world), alphaToCoverage != 0u ? albedo.a : 1.0);
 }

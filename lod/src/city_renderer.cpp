@@ -321,6 +321,15 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                 ++stats.batchesPending;
                 if (catalog_.batch(b).grammar < buildingGrammars)
                     volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f});
+                else
+                    billboards.emplace_back(b, true);
+            }
+            if (!cell.treesAsTerminals) {
+                // Tree batches left out of the cell's batches: every tree a billboard.
+                const uint32_t first = catalog_.firstBatchOf(cell.cell);
+                const uint32_t count = uint32_t(catalog_.index().batchesOf(cell.cell).size());
+                for (uint32_t b = first; b < first + count; ++b)
+                    if (catalog_.batch(b).grammar >= buildingGrammars) billboards.emplace_back(b, true);
             }
         } else {
             // LOD1 within its distance, blending into LOD0 over the band before it.
@@ -401,12 +410,15 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     if (trees_.hasImpostors() && !billboards.empty()) {
         gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
         trees_.begin(trees_.program());
+        trees_.program().set("alphaToCoverage", uint32_t(options_.samples > 1));
+        if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         for (const auto& [batch, all] : billboards) {
             const uint32_t drawn = trees_.draw(batch, all);
             stats.treeBillboards += drawn;
             stats.triangles += 2ull * drawn;
             stats.draws += drawn > 0;
         }
+        gl::glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         gl::glBindVertexArray(0);
     }
     stats.drawMs = millisecondsSince(stageStart);
@@ -421,7 +433,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.cacheBytes = cache_.stats().memoryBytes;
     stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
                      volumes_.stats().residentBytes + ground_.byteSize() +
-                     uint64_t(options_.width) * options_.height * 12;
+                     uint64_t(options_.width) * options_.height * 12 * options_.samples;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;
 }
@@ -456,11 +468,14 @@ void CityRenderer::drawTerminals(FrameStats& stats) {
         impostorTextures_.bind(programs_->impostor, 0);
         programs_->impostor.set("centralView", centralView_);
         programs_->impostor.set("parallaxIterations", options_.parallaxIterations);
+        programs_->impostor.set("alphaToCoverage", uint32_t(options_.samples > 1));
+        if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, sphereBuffer_);
         gl::glMultiDrawArraysIndirect(GL_TRIANGLES,
                                       reinterpret_cast<const void*>(uintptr_t(shapes) * kLod4CommandStride),
                                       GLsizei(shapes), kImpostorCommandStride);
     }
+    gl::glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gl::glBindVertexArray(0);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }

@@ -65,6 +65,13 @@ bool Framebuffer::create(const FramebufferDesc& desc, Framebuffer& out, std::str
                 " is outside 1.." + std::to_string(maxSize);
         return false;
     }
+    GLint maxSamples = 1;
+    gl::glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+    if (desc.samples == 0 || desc.samples > uint32_t(maxSamples)) {
+        error = std::to_string(desc.samples) + " samples per pixel, this GL allows 1 to " +
+                std::to_string(maxSamples);
+        return false;
+    }
     if (desc.colorFormats.size() > size_t(maxAttachments)) {
         error = std::to_string(desc.colorFormats.size()) + " colour attachments, at most " +
                 std::to_string(maxAttachments);
@@ -74,12 +81,25 @@ bool Framebuffer::create(const FramebufferDesc& desc, Framebuffer& out, std::str
     framebuffer.desc_ = desc;
     gl::glCreateFramebuffers(1, &framebuffer.id_);
     std::vector<GLenum> drawBuffers;
-    for (uint32_t format : desc.colorFormats) {
+    const bool multisampled = desc.samples > 1;
+    auto makeTexture = [&](uint32_t format) {
         GLuint texture = 0;
-        gl::glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-        gl::glTextureStorage2D(texture, 1, format, GLsizei(desc.width), GLsizei(desc.height));
-        gl::glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        gl::glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        if (multisampled) {
+            gl::glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &texture);
+            gl::glTextureStorage2DMultisample(texture, GLsizei(desc.samples), format, GLsizei(desc.width),
+                                              GLsizei(desc.height), GL_TRUE);
+        } else {
+            gl::glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+            gl::glTextureStorage2D(texture, 1, format, GLsizei(desc.width), GLsizei(desc.height));
+        }
+        return texture;
+    };
+    for (uint32_t format : desc.colorFormats) {
+        GLuint texture = makeTexture(format);
+        if (!multisampled) {
+            gl::glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+            gl::glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        }
         GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(framebuffer.colors_.size());
         gl::glNamedFramebufferTexture(framebuffer.id_, attachment, texture, 0);
         framebuffer.colors_.push_back(texture);
@@ -87,9 +107,7 @@ bool Framebuffer::create(const FramebufferDesc& desc, Framebuffer& out, std::str
     }
     gl::glNamedFramebufferDrawBuffers(framebuffer.id_, GLsizei(drawBuffers.size()), drawBuffers.data());
     if (desc.depth) {
-        gl::glCreateTextures(GL_TEXTURE_2D, 1, &framebuffer.depth_);
-        gl::glTextureStorage2D(framebuffer.depth_, 1, GL_DEPTH_COMPONENT32F, GLsizei(desc.width),
-                               GLsizei(desc.height));
+        framebuffer.depth_ = makeTexture(GL_DEPTH_COMPONENT32F);
         gl::glNamedFramebufferTexture(framebuffer.id_, GL_DEPTH_ATTACHMENT, framebuffer.depth_, 0);
     }
     GLenum status = gl::glCheckNamedFramebufferStatus(framebuffer.id_, GL_DRAW_FRAMEBUFFER);
@@ -123,10 +141,21 @@ void Framebuffer::clearAttachment(uint32_t attachment, float r, float g, float b
 
 Image Framebuffer::readColor(uint32_t attachment) const {
     if (attachment >= colors_.size()) return {};
-    return readAttachment(id_, GL_COLOR_ATTACHMENT0 + attachment, GL_RGBA, 4, desc_.width, desc_.height);
+    if (desc_.samples <= 1)
+        return readAttachment(id_, GL_COLOR_ATTACHMENT0 + attachment, GL_RGBA, 4, desc_.width, desc_.height);
+    // Resolve into a single-sample target of the attachment's format, then read that.
+    Framebuffer resolved;
+    std::string error;
+    if (!create({desc_.width, desc_.height, {desc_.colorFormats[attachment]}, false, 1}, resolved, error))
+        return {};
+    gl::glNamedFramebufferReadBuffer(id_, GL_COLOR_ATTACHMENT0 + attachment);
+    gl::glBlitNamedFramebuffer(id_, resolved.id_, 0, 0, GLint(desc_.width), GLint(desc_.height), 0, 0,
+                               GLint(desc_.width), GLint(desc_.height), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    return resolved.readColor(0);
 }
 
 Image Framebuffer::readDepth() const {
+    if (desc_.samples > 1) return {};
     return readAttachment(id_, GL_NONE, GL_DEPTH_COMPONENT, 1, desc_.width, desc_.height);
 }
 

@@ -69,6 +69,39 @@ TEST_F(FramebufferTest, ZeroAndOversizedExtentsAreRejectedWithAReason) {
     EXPECT_NE(error.find("colour attachments"), std::string::npos) << error;
 }
 
+TEST_F(FramebufferTest, AMultisampledTargetResolvesEdgesToPartialCoverage) {
+    Framebuffer target;
+    std::string error;
+    ASSERT_TRUE(Framebuffer::create({64, 32, {GL_RGBA16F}, true, 4}, target, error)) << error;
+    EXPECT_EQ(target.samples(), 4u);
+    ShaderLibrary library;
+    library.add("tri.vert", kVertex);
+    library.add("tri.frag", kFragment);
+    ShaderProgram program = ShaderProgram::build(
+        library, {{ShaderStage::Vertex, "tri.vert"}, {ShaderStage::Fragment, "tri.frag"}}, "", error);
+    ASSERT_TRUE(program.valid()) << error;
+    GLuint vao = 0;
+    gl::glCreateVertexArrays(1, &vao);
+    target.bind();
+    target.clear(0, 0, 0, 0);
+    program.use();
+    gl::glBindVertexArray(vao);
+    gl::glDrawArrays(GL_TRIANGLES, 0, 3);
+    gl::glDeleteVertexArrays(1, &vao);
+    Image color = target.readColor(0);
+    ASSERT_EQ(color.width, 64u);
+    EXPECT_FLOAT_EQ(color.at(2, 29)[3], 1.0f); // inside
+    EXPECT_FLOAT_EQ(color.at(61, 2)[3], 0.0f); // outside
+    // Along the diagonal some pixels are partly covered: that is what multisampling is for.
+    int partial = 0;
+    for (uint32_t x = 0; x < 64; ++x)
+        for (uint32_t y = 0; y < 32; ++y) partial += color.at(x, y)[3] > 0.01f && color.at(x, y)[3] < 0.99f;
+    EXPECT_GT(partial, 20);
+    EXPECT_TRUE(target.readDepth().empty());
+    EXPECT_FALSE(Framebuffer::create({8, 8, {GL_RGBA16F}, true, 1024}, target, error));
+    EXPECT_NE(error.find("samples per pixel"), std::string::npos) << error;
+}
+
 TEST_F(FramebufferTest, AOneByOneTargetWorks) {
     Framebuffer target;
     std::string error;

@@ -41,6 +41,9 @@ bool parseRenderMode(std::string_view name, RenderMode& out);
 
 struct CityRendererOptions {
     uint32_t width = 1280, height = 720;
+    // Samples per pixel (multisampling, alpha to coverage for impostors): what a viewer sees
+    // at a silhouette, and what image errors should be measured on.
+    uint32_t samples = 1;
     RenderMode mode = RenderMode::Lod;
     scene::LodProfile lod;
     uint64_t arenaRecords = uint64_t(1) << 23;        // 8 M terminals, 256 MiB

@@ -14,6 +14,7 @@ struct FramebufferDesc {
     uint32_t width = 0, height = 0;
     std::vector<uint32_t> colorFormats{0x881A}; // GL internal formats; default GL_RGBA16F
     bool depth = true;                          // GL_DEPTH_COMPONENT32F
+    uint32_t samples = 1;                       // above 1: multisampled, resolved on readback
 };
 
 class Framebuffer {
@@ -36,6 +37,7 @@ public:
     void clearAttachment(uint32_t attachment, float r, float g, float b, float a) const;
 
     uint32_t width() const { return desc_.width; }
+    uint32_t samples() const { return desc_.samples; }
     uint32_t height() const { return desc_.height; }
     uint32_t colorTexture(uint32_t attachment) const { return colors_.at(attachment); }
     uint32_t depthTexture() const { return depth_; }
@@ -43,7 +45,8 @@ public:
 
     // Reads back an attachment as floats, top row first: colour as RGBA, depth as one channel
     // of window-space depth in [0, 1]. Waits for rendering to finish. An attachment that does
-    // not exist gives an empty image.
+    // not exist gives an empty image. A multisampled colour attachment is resolved (averaged)
+    // first; multisampled depth cannot be read back.
     Image readColor(uint32_t attachment = 0) const;
     Image readDepth() const;
 
