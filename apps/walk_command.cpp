@@ -108,6 +108,7 @@ int runWalkCommand(const WalkOptions& o) {
     summary["gl_renderer"] = session.gl->info().renderer;
     summary["notes"] = session.notes;
     summary["peak_rss_bytes"] = peakRssBytes();
+    summary["cache_budget_bytes"] = session.config.cache.memoryBytes;
     if (!o.outDir.empty()) {
         std::ofstream(std::filesystem::path(o.outDir) / "frames.json") << perFrame.dump(1) << "\n";
         std::ofstream(std::filesystem::path(o.outDir) / "summary.json") << summary.dump(2) << "\n";

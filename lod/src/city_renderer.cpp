@@ -73,25 +73,6 @@ glm::mat4 reversedPerspective(double fovY, double aspect, double nearPlane, doub
     return glm::mat4(p);
 }
 
-// The pose with a unit forward and an up orthogonal to it (world z, or y when looking along
-// z), whatever up the caller gave; a forward that is not finite looks north.
-scene::CameraPose usablePose(scene::CameraPose pose) {
-    const bool finiteForward = std::isfinite(pose.forward.x) && std::isfinite(pose.forward.y) &&
-                               std::isfinite(pose.forward.z) && glm::length(pose.forward) > 0.0;
-    pose.forward = finiteForward ? glm::normalize(pose.forward) : glm::dvec3(0, 1, 0);
-    glm::dvec3 up = pose.up;
-    if (!(std::isfinite(up.x) && std::isfinite(up.y) && std::isfinite(up.z))) up = glm::dvec3(0, 0, 1);
-    up -= glm::dot(up, pose.forward) * pose.forward;
-    if (glm::length(up) < 1e-6) {
-        up = std::abs(pose.forward.z) > 0.9999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
-        up -= glm::dot(up, pose.forward) * pose.forward;
-    }
-    pose.up = glm::normalize(up);
-    if (!(pose.fovY > 1e-4) || !(pose.fovY < 3.1414))
-        pose.fovY = std::clamp(std::isfinite(pose.fovY) ? pose.fovY : 1.0, 1e-4, 3.1414);
-    return pose;
-}
-
 } // namespace
 
 const char* renderModeName(RenderMode mode) {
@@ -252,7 +233,7 @@ bool CityRenderer::init(std::string& error) {
 FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSeconds, double nearPlane,
                                 double farPlane) {
     const auto frameStart = Clock::now();
-    const scene::CameraPose pose = usablePose(given);
+    const scene::CameraPose pose = scene::usablePose(given);
     FrameStats stats;
     stats.frame = frame_++;
     const double aspect = double(options_.width) / double(options_.height);
@@ -267,7 +248,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     camera.viewportHeight = options_.height;
     camera.nearPlane = nearPlane;
     camera.farPlane = farPlane;
-    const double generatedBefore = cache_.stats().generationSecondsTotal;
+    const cache::CacheStats cacheBefore = cache_.stats();
+    const double generatedBefore = cacheBefore.generationSecondsTotal;
     auto stageStart = Clock::now();
     const cells::FrameDecision decision = scheduler_->update(camera, timeSeconds);
     stats.scheduleMs = millisecondsSince(stageStart);
@@ -430,7 +412,10 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.gpuWaitMs = millisecondsSince(stageStart);
     stats.frameMs = millisecondsSince(frameStart);
 
-    stats.cacheBytes = cache_.stats().memoryBytes;
+    const cache::CacheStats cacheAfter = cache_.stats();
+    stats.cacheBytes = cacheAfter.memoryBytes;
+    stats.cacheLookups = cacheAfter.lookups - cacheBefore.lookups;
+    stats.cacheHits = cacheAfter.hits - cacheBefore.hits;
     stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
                      volumes_.stats().residentBytes + ground_.byteSize() +
                      uint64_t(options_.width) * options_.height * 12 * options_.samples;

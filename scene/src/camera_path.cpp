@@ -35,6 +35,22 @@ glm::dvec3 catmullRom(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dve
 
 } // namespace
 
+CameraPose usablePose(CameraPose pose) {
+    const bool finiteForward = std::isfinite(pose.forward.x) && std::isfinite(pose.forward.y) &&
+                               std::isfinite(pose.forward.z) && glm::length(pose.forward) > 0.0;
+    pose.forward = finiteForward ? glm::normalize(pose.forward) : glm::dvec3(0, 1, 0);
+    glm::dvec3 up = pose.up;
+    if (!(std::isfinite(up.x) && std::isfinite(up.y) && std::isfinite(up.z))) up = glm::dvec3(0, 0, 1);
+    up -= glm::dot(up, pose.forward) * pose.forward;
+    if (glm::length(up) < 1e-6) {
+        up = std::abs(pose.forward.z) > 0.9999 ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+        up -= glm::dot(up, pose.forward) * pose.forward;
+    }
+    pose.up = glm::normalize(up);
+    pose.fovY = std::clamp(std::isfinite(pose.fovY) ? pose.fovY : 1.0, 1e-4, kPi - 1e-4);
+    return pose;
+}
+
 CameraPose CameraPath::at(double time, const glm::dvec3& origin) const {
     const size_t n = keyframes.size();
     size_t segment = 0;

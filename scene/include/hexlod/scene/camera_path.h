@@ -20,6 +20,10 @@ struct CameraPose {
     double fovY = 1.0;                 // radians
 };
 
+// The pose made usable: a unit forward (north when it is not finite), an up orthogonal to it
+// (the given one if possible, else world z, else y), a field of view inside (0, 180) degrees.
+CameraPose usablePose(CameraPose pose);
+
 enum class PathInterpolation : uint8_t { CatmullRom, Linear };
 
 struct CameraKeyframe {
