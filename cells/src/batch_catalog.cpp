@@ -1,7 +1,5 @@
 #include "hexlod/cells/batch_catalog.h"
 
-#include "hexlod/grammar/batch_expander.h"
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -85,6 +83,11 @@ grammar::TerminalSet BatchCatalog::generate(uint32_t b) const {
 
 grammar::TerminalSet BatchCatalog::generate(uint32_t b, std::span<const grammar::BuildingInput> inputs,
                                             const cache::BatchKey& batchKey) const {
+    return expand(b, inputs, batchKey).terminals;
+}
+
+grammar::BatchResult BatchCatalog::expand(uint32_t b, std::span<const grammar::BuildingInput> inputs,
+                                          const cache::BatchKey& batchKey) const {
     const Batch& of = batch(b);
     grammar::BatchInput input;
     input.grammar = &grammar(of.grammar).grammar;
@@ -93,9 +96,9 @@ grammar::TerminalSet BatchCatalog::generate(uint32_t b, std::span<const grammar:
     input.settings.cellOrigin = cellOrigin(of.cell);
     input.cell = {of.cell.q, of.cell.r};
     input.grammarIndex = of.grammar;
-    grammar::TerminalSet set = grammar::expandBatch(input).terminals;
-    set.header.key = batchKey.digest();
-    return set;
+    grammar::BatchResult result = grammar::expandBatch(input);
+    result.terminals.header.key = batchKey.digest();
+    return result;
 }
 
 std::shared_ptr<const grammar::TerminalSet> BatchCatalog::fetch(uint32_t b,
