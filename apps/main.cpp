@@ -2,7 +2,9 @@
 // its own file and registers itself here.
 #include "cells_command.h"
 #include "expand_command.h"
+#include "export_command.h"
 #include "import_command.h"
+#include "serve_command.h"
 
 #include <CLI/CLI.hpp>
 
@@ -18,6 +20,10 @@ int main(int argc, char** argv) {
     CLI::App* importCommand = hexlod::apps::registerImportCommand(app, import);
     hexlod::apps::CellsOptions cells;
     CLI::App* cellsCommand = hexlod::apps::registerCellsCommand(app, cells);
+    hexlod::apps::ServeOptions serve;
+    CLI::App* serveCommand = hexlod::apps::registerServeCommand(app, serve);
+    hexlod::apps::ExportOptions exportOptions;
+    CLI::App* exportCommand = hexlod::apps::registerExportCommand(app, exportOptions);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -26,5 +32,7 @@ int main(int argc, char** argv) {
     if (expandCommand->parsed()) return hexlod::apps::runExpandCommand(expand);
     if (importCommand->parsed()) return hexlod::apps::runImportCommand(import);
     if (cellsCommand->parsed()) return hexlod::apps::runCellsCommand(cells);
+    if (serveCommand->parsed()) return hexlod::apps::runServeCommand(serve);
+    if (exportCommand->parsed()) return hexlod::apps::runExportCommand(exportOptions);
     return 0;
 }
