@@ -2,6 +2,8 @@
 
 #include "event_stream.h"
 
+#include "hexlod/server/beast_request.h"
+
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/beast/core/bind_handler.hpp>
@@ -156,18 +158,8 @@ void HttpSession::onRequest(beast::error_code ec) {
         route_ = route;
         reply(std::move(r));
     };
-    if (message.version() != 10 && message.version() != 11) {
-        Reply r = errorReply(505, "only HTTP/1.0 and HTTP/1.1 are spoken here");
-        r.closeConnection = true;
-        return early(std::move(r), "malformed");
-    }
-    // Host is mandatory in HTTP/1.1 (RFC 9112 §3.2); it is asked of HTTP/1.0 too, so that a
-    // reply never depends on a client's guess at the service's name.
-    if (message.find(http::field::host) == message.end() || message[http::field::host].empty()) {
-        Reply r = errorReply(400, "missing Host header");
-        r.closeConnection = true;
-        return early(std::move(r), "malformed");
-    }
+    if (std::optional<Reply> rejected = rejectBeforeRouting(message))
+        return early(std::move(*rejected), "malformed");
     if (const uint32_t wait = context_.limiter.acquire(remote_)) {
         ++context_.service.metrics().rateLimited;
         Reply r = errorReply(429, "too many requests from " + remote_ + "; retry in " + std::to_string(wait) +
@@ -175,16 +167,7 @@ void HttpSession::onRequest(beast::error_code ec) {
         r.set("Retry-After", std::to_string(wait));
         return early(std::move(r), "rate_limited");
     }
-    Request request;
-    request.method = std::string(message.method_string());
-    request.target = std::string(message.target());
-    request.version = message.version();
-    for (const auto& field : message)
-        request.headers.emplace_back(
-            lowerCase(std::string_view(field.name_string().data(), field.name_string().size())),
-            std::string(field.value()));
-    request.body = std::move(message.body());
-    request.remoteAddress = remote_;
+    Request request = toRequest(std::move(message), remote_);
     parser_.reset();
     route_ = context_.api.handle(request, [self = shared_from_this()](Reply r) {
         net::post(self->stream_.get_executor(),
