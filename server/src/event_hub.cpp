@@ -70,6 +70,13 @@ void EventHub::unsubscribe(const EventSubscriber* subscriber) {
     std::erase_if(subscribers_, [&](const auto& s) { return s.get() == subscriber; });
 }
 
+void EventHub::drop(const EventSubscriber* subscriber) {
+    std::lock_guard lock(mutex_);
+    const size_t before = subscribers_.size();
+    std::erase_if(subscribers_, [&](const auto& s) { return s.get() == subscriber; });
+    stats_.dropped += before - subscribers_.size();
+}
+
 void EventHub::closeAll() {
     std::vector<std::shared_ptr<EventSubscriber>> all;
     {

@@ -59,7 +59,9 @@ void EventStream::writeNext() {
     }
     deadline_.expires_after(context_.options.writeTimeout);
     deadline_.async_wait([self = shared_from_this()](boost::system::error_code ec) {
-        if (!ec) self->closeNow(); // the client stopped reading
+        if (ec) return;
+        self->context_.service.events().drop(self.get()); // the client stopped reading
+        self->closeNow();
     });
     net::async_write(socket_, net::buffer(*frame),
                      [self = shared_from_this(), frame](boost::system::error_code ec, size_t) {
@@ -77,8 +79,15 @@ void EventStream::armHeartbeat() {
     heartbeat_.expires_after(context_.options.heartbeat);
     heartbeat_.async_wait([self = shared_from_this()](boost::system::error_code ec) {
         if (ec) return;
+        // Only an idle stream needs a heartbeat: one with frames queued is not idle, and a
+        // stalled one is the write deadline's to drop.
         static const EventFrame beat = std::make_shared<const std::string>(EventHub::heartbeatFrame());
-        if (!self->deliver(beat)) return self->closeNow();
+        bool idle = false;
+        {
+            std::lock_guard lock(self->mutex_);
+            idle = self->queue_.empty();
+        }
+        if (idle) self->deliver(beat);
         self->armHeartbeat();
     });
 }

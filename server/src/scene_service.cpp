@@ -354,7 +354,8 @@ void SceneService::renderMetrics(PrometheusText& out) const {
     out.sample("hexlod_sse_clients", {}, hub.subscribers);
     out.family("hexlod_sse_events_total", "counter", "Change events published.");
     out.sample("hexlod_sse_events_total", {}, static_cast<double>(hub.published));
-    out.family("hexlod_sse_dropped_total", "counter", "Subscribers dropped because their queue overflowed.");
+    out.family("hexlod_sse_dropped_total", "counter",
+               "Subscribers dropped: their queue overflowed or a write stalled past the write timeout.");
     out.sample("hexlod_sse_dropped_total", {}, static_cast<double>(hub.dropped));
     out.family("hexlod_journal_seq", "gauge", "Sequence number of the last journal entry.");
     out.sample("hexlod_journal_seq", {}, static_cast<double>(lastSeq()));

@@ -119,7 +119,7 @@ TEST(BadRequests, EveryOneGetsItsStatusAndAReasonAndNothingIsLost) {
         {"HTTP/2.0 request line", "GET / HTTP/2.0\r\nHost: test\r\n\r\n", 505, "HTTP/1.0 and HTTP/1.1"},
         {"bad Content-Length", "POST /api/v1/edits HTTP/1.1\r\nHost: test\r\nContent-Length: abc\r\n\r\n",
          400, "malformed request"},
-        {"binary garbage", std::string("\x01\x02\x03 hello\r\n\r\n", 15), 400, "malformed request"},
+        {"binary garbage", std::string("\x01\x02\x03 hello\r\n\r\n"), 400, "malformed request"},
         {"bad chunk",
          "POST /api/v1/edits HTTP/1.1\r\nHost: test\r\nTransfer-Encoding: chunked\r\n\r\nZZZ\r\n", 400,
          "malformed request"},

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <thread>
 
 namespace hexlod::test {
 namespace {
@@ -202,7 +203,14 @@ TEST_F(Endpoints, BuildingEditsHistoryHealthAndMetrics) {
     const Json health = live->getJson("/healthz");
     EXPECT_EQ(health["status"], "ok");
 
-    const auto metrics = live->get("/metrics");
+    // A request is counted once its reply is written, which may be just after the client has
+    // read it: give the last ones a moment.
+    http_client::Response metrics;
+    for (int attempt = 0; attempt < 50; ++attempt) {
+        metrics = live->get("/metrics");
+        if (metrics.body.find("route=\"GET /healthz\"") != std::string::npos) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
     ASSERT_EQ(metrics.status, 200);
     EXPECT_EQ(metrics.header("content-type"), "text/plain; version=0.0.4; charset=utf-8");
     for (const char* family :

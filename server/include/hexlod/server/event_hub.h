@@ -44,6 +44,8 @@ public:
     void subscribe(const std::shared_ptr<EventSubscriber>& subscriber, std::optional<uint64_t> lastEventId,
                    const std::string& helloJson);
     void unsubscribe(const EventSubscriber* subscriber);
+    // Unsubscribes a subscriber that gave up on its own (its writes stalled) and counts it as dropped.
+    void drop(const EventSubscriber* subscriber);
     void closeAll();
     EventHubStats stats() const;
 
