@@ -8,8 +8,10 @@ packages=(
     libglm-dev libtbb-dev libzstd-dev
     nlohmann-json3-dev libcli11-dev libspdlog-dev
     libosmium2-dev libprotozero-dev zlib1g-dev libbz2-dev libexpat1-dev
+    libboost-dev
     googletest libgtest-dev libbenchmark-dev
     clang-14 libclang-rt-14-dev clang-format
+    wrk curl python3
 )
 
 run_as_root() {
