@@ -12,6 +12,8 @@ namespace hexlod::cells {
 namespace {
 
 template <class... Ts> struct Overloaded : Ts... { using Ts::operator()...; };
+// Clang 14 does not deduce aggregate template arguments by itself (P1816).
+template <class... Ts> Overloaded(Ts...) -> Overloaded<Ts...>;
 
 std::string cellName(HexCoord c) {
     return "(" + std::to_string(c.q) + ", " + std::to_string(c.r) + ")";

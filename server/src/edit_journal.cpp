@@ -2,6 +2,7 @@
 
 #include "hexlod/cache/batch_key.h"
 #include "hexlod/grammar/terminal_set_codec.h"
+#include "hexlod/server/http_types.h"
 
 #include <cerrno>
 #include <chrono>
@@ -92,9 +93,11 @@ bool readAll(int fd, std::string& out, std::string& error, const std::string& pa
 }
 
 std::string headerLine(const std::string& scene) {
-    return withCrc(Json{
-        {"format", kFormat}, {"version", kFormatVersion}, {"scene", scene}, {"seq", 0}, {"created", utcNow()}}
-                       .dump());
+    return withCrc(jsonText(Json{{"format", kFormat},
+                                 {"version", kFormatVersion},
+                                 {"scene", scene},
+                                 {"seq", 0},
+                                 {"created", utcNow()}}));
 }
 
 // Replaces the journal by `text` atomically: a temporary file, fsync, rename, folder fsync.
@@ -178,7 +181,7 @@ std::string EditJournal::formatLine(const JournalEntry& e) {
         j["op"] = "undo";
         j["undoes"] = e.undoes;
     }
-    return withCrc(j.dump());
+    return withCrc(jsonText(j));
 }
 
 bool EditJournal::parseLine(std::string_view line, JournalEntry& entry, std::string& error) {

@@ -1,5 +1,7 @@
 #include "hexlod/server/edit_request.h"
 
+#include "hexlod/server/http_types.h"
+
 #include <cmath>
 #include <limits>
 
@@ -41,7 +43,8 @@ bool readSelector(const Json& selector, EditSpec& out, EditError& error) {
             const Json& id = value[i];
             if (!id.is_number_unsigned() || id.get<uint64_t>() > std::numeric_limits<uint32_t>::max())
                 return fail(error, field + "[" + std::to_string(i) + "]",
-                            "expected a building id (a whole number in [0, 4294967295]), got " + id.dump());
+                            "expected a building id (a whole number in [0, 4294967295]), got " +
+                                jsonText(id));
             ids.ids.push_back(id.get<uint32_t>());
         }
         out.selector = std::move(ids);
@@ -53,7 +56,7 @@ bool readSelector(const Json& selector, EditSpec& out, EditError& error) {
             if (!c.is_number_integer() || c.get<int64_t>() < std::numeric_limits<int32_t>::min() ||
                 c.get<int64_t>() > std::numeric_limits<int32_t>::max())
                 return fail(error, field + "[" + std::to_string(i) + "]",
-                            "expected a 32-bit whole number, got " + c.dump());
+                            "expected a 32-bit whole number, got " + jsonText(c));
             qr[i] = static_cast<int32_t>(c.get<int64_t>());
         }
         out.selector = cells::HexCoord{qr[0], qr[1]};
@@ -64,7 +67,7 @@ bool readSelector(const Json& selector, EditSpec& out, EditError& error) {
                    value.get<uint64_t>() <= std::numeric_limits<uint32_t>::max()) {
             out.selector = cells::GrammarIndex{value.get<uint32_t>()};
         } else {
-            return fail(error, field, "expected a grammar name or index, got " + value.dump());
+            return fail(error, field, "expected a grammar name or index, got " + jsonText(value));
         }
     } else {
         return fail(error, field, "unknown selector (expected \"buildings\", \"cell\" or \"grammar\")");

@@ -30,7 +30,7 @@ void EventStream::start(std::optional<uint64_t> lastEventId) {
                                                 "Server: hexlod\r\n"
                                                 "\r\n"
                                                 "retry: 2000\n\n"));
-    context_.service.events().subscribe(shared_from_this(), lastEventId, context_.service.hello().dump());
+    context_.service.events().subscribe(shared_from_this(), lastEventId, jsonText(context_.service.hello()));
     armHeartbeat();
     readUntilClosed();
 }

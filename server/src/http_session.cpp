@@ -169,10 +169,18 @@ void HttpSession::onRequest(beast::error_code ec) {
     }
     Request request = toRequest(std::move(message), remote_);
     parser_.reset();
-    route_ = context_.api.handle(request, [self = shared_from_this()](Reply r) {
+    auto self = shared_from_this();
+    const Respond respond = [self](Reply r) {
         net::post(self->stream_.get_executor(),
                   [self, r = std::move(r)]() mutable { self->reply(std::move(r)); });
-    });
+    };
+    try {
+        route_ = context_.api.handle(request, respond);
+    } catch (const std::exception& e) {
+        // A handler bug must cost one request, not the process: io_context::run would rethrow it.
+        route_ = "failed";
+        respond(errorReply(500, std::string("internal error: ") + e.what()));
+    }
 }
 
 void HttpSession::reply(Reply r) {

@@ -10,6 +10,10 @@ std::optional<std::string_view> Request::header(std::string_view lowerName) cons
     return std::nullopt;
 }
 
+std::string jsonText(const nlohmann::json& value) {
+    return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 Reply jsonReply(int status, std::string json) {
     Reply reply;
     reply.status = status;
@@ -21,7 +25,7 @@ Reply jsonReply(int status, std::string json) {
 Reply errorReply(int status, const std::string& reason, const std::string& field) {
     nlohmann::json body = {{"status", status}, {"error", reason}};
     if (!field.empty()) body["field"] = field;
-    Reply reply = jsonReply(status, body.dump() + "\n");
+    Reply reply = jsonReply(status, jsonText(body) + "\n");
     // Errors describe the state at the time of asking: never cache them.
     reply.set("Cache-Control", "no-store");
     return reply;

@@ -3,6 +3,7 @@
 #include "hexlod/server/scene_service.h"
 
 #include "hexlod/grammar/position_hash.h"
+#include "hexlod/server/http_types.h"
 
 #include <chrono>
 
@@ -256,7 +257,7 @@ EditOutcome SceneService::edit(const EditSpec& spec) {
     history_.push_back({entry, Status::Applied, {}, result.changed.size(), 0});
     undoStack_.push_back(history_.size() - 1);
     Json reply = changeReply("edit", entry.seq, std::move(changed));
-    events_.publish(entry.seq, "edit", reply.dump());
+    events_.publish(entry.seq, "edit", jsonText(reply));
     metrics_.recordEdit("edit", "ok");
     return {200, std::move(reply)};
 }
@@ -291,7 +292,7 @@ EditOutcome SceneService::undo() {
     history_.push_back({entry, Status::Applied, {}, result.changed.size(), 0});
     Json reply = changeReply("undo", entry.seq, std::move(changed));
     reply["undoes"] = entry.undoes;
-    events_.publish(entry.seq, "undo", reply.dump());
+    events_.publish(entry.seq, "undo", jsonText(reply));
     metrics_.recordEdit("undo", "ok");
     return {200, std::move(reply)};
 }

@@ -4,6 +4,7 @@
 
 #include "hexlod/grammar/extruded_set_codec.h"
 #include "hexlod/grammar/terminal_set_codec.h"
+#include "hexlod/server/http_types.h"
 
 #include <charconv>
 #include <cstdlib>
@@ -168,8 +169,8 @@ std::string SceneService::buildIndex() const {
              {"trees", trees},
              {"batches", batches}});
     }
-    return Json{{"seq", lastSeq_}, {"cell_size", catalog.scene().config.cellSize}, {"cells", cellList}}
-        .dump();
+    return jsonText(
+        Json{{"seq", lastSeq_}, {"cell_size", catalog.scene().config.cellSize}, {"cells", cellList}});
 }
 
 SceneService::IndexView SceneService::cellIndex() {

@@ -25,9 +25,18 @@ bool isJsonContentType(std::optional<std::string_view> value) {
 }
 
 Reply outcomeReply(const EditOutcome& outcome) {
-    Reply reply = jsonReply(outcome.status, outcome.body.dump() + "\n");
+    Reply reply = jsonReply(outcome.status, jsonText(outcome.body) + "\n");
     reply.set("Cache-Control", "no-store");
     return reply;
+}
+
+// Runs an edit job on the edit thread; an exception becomes a 500 instead of ending the thread.
+template <typename Job> void answerEdit(const Respond& respond, Job job) {
+    try {
+        respond(outcomeReply(job()));
+    } catch (const std::exception& e) {
+        respond(errorReply(500, std::string("internal error: ") + e.what()));
+    }
 }
 
 std::string_view trimmed(std::string_view s) {
@@ -50,7 +59,7 @@ ServiceApi::ServiceApi(SceneService& service, ApiOptions options)
     : service_(service), options_(std::move(options)), router_(options_.token), static_(options_.webRoot) {
     Router& r = router_;
     r.add("GET", "/api/v1/scene", [this](const RequestContext& c, Respond respond) {
-        respond(conditionalJson(c.request, service_.stateEtag(), service_.summary().dump() + "\n"));
+        respond(conditionalJson(c.request, service_.stateEtag(), jsonText(service_.summary()) + "\n"));
     });
     r.add("GET", "/api/v1/cells", [this](const RequestContext& c, Respond respond) {
         const SceneService::IndexView index = service_.cellIndex();
@@ -72,7 +81,7 @@ ServiceApi::ServiceApi(SceneService& service, ApiOptions options)
         const auto building = service_.building(*id);
         if (!building)
             return respond(errorReply(404, "building " + std::to_string(*id) + " is not in the scene"));
-        respond(conditionalJson(c.request, service_.stateEtag(), building->dump() + "\n"));
+        respond(conditionalJson(c.request, service_.stateEtag(), jsonText(*building) + "\n"));
     });
     r.add("GET", "/api/v1/edits", [this](const RequestContext& c, Respond respond) {
         uint64_t since = 0;
@@ -89,7 +98,7 @@ ServiceApi::ServiceApi(SceneService& service, ApiOptions options)
             limit = *n;
         }
         respond(conditionalJson(c.request, service_.stateEtag(),
-                                service_.history(since, static_cast<size_t>(limit)).dump() + "\n"));
+                                jsonText(service_.history(since, static_cast<size_t>(limit))) + "\n"));
     });
     r.add(
         "POST", "/api/v1/edits",
@@ -109,7 +118,7 @@ ServiceApi::ServiceApi(SceneService& service, ApiOptions options)
         respond(std::move(reply));
     });
     r.add("GET", "/healthz", [this](const RequestContext&, Respond respond) {
-        Reply reply = jsonReply(200, Json{{"status", "ok"}, {"seq", service_.lastSeq()}}.dump() + "\n");
+        Reply reply = jsonReply(200, jsonText(Json{{"status", "ok"}, {"seq", service_.lastSeq()}}) + "\n");
         reply.set("Cache-Control", "no-store");
         respond(std::move(reply));
     });
@@ -195,7 +204,8 @@ void ServiceApi::postUndo(const RequestContext& c, Respond respond) const {
     const std::string_view body = trimmed(c.request.body);
     if (!body.empty() && body != "{}")
         return respond(errorReply(400, "an undo takes no parameters: send an empty body or {}"));
-    options_.runEdit([this, respond = std::move(respond)] { respond(outcomeReply(service_.undo())); });
+    options_.runEdit(
+        [this, respond = std::move(respond)] { answerEdit(respond, [&] { return service_.undo(); }); });
 }
 
 void ServiceApi::events(const RequestContext& c, Respond respond) const {

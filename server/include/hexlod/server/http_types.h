@@ -3,6 +3,8 @@
 // converts from and to Beast messages, and the fuzz target builds requests directly.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -50,6 +52,10 @@ struct Reply {
 
 // Handlers answer through this, on any thread, exactly once.
 using Respond = std::function<void(Reply)>;
+
+// JSON text for a reply, an event or a journal line. Strings that are not valid UTF-8 (a
+// reason quoting a client's bytes) are written with U+FFFD instead of making dump() throw.
+std::string jsonText(const nlohmann::json& value);
 
 // A JSON error body: {"error": reason, "status": status[, "field": field]}.
 Reply errorReply(int status, const std::string& reason, const std::string& field = {});
