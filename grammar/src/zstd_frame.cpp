@@ -30,6 +30,8 @@ size_t compressFrame(std::span<const uint8_t> body, int level, std::vector<uint8
     // The bound makes the only failure a bad level, which zstd clamps instead of failing.
     const size_t frameBytes = ZSTD_isError(bytes) ? 0 : bytes;
     out.resize(offset + frameBytes);
+    // The bound is about the raw size: a payload kept in a cache must not hold that much.
+    out.shrink_to_fit();
     return frameBytes;
 }
 
