@@ -33,6 +33,9 @@ CLI::App* registerServeCommand(CLI::App& app, ServeOptions& o) {
                     "Encoded payload cache: 3/4 for terminal sets, 1/4 for extruded sets")
         ->check(CLI::Range(1u, 1u << 20))
         ->capture_default_str();
+    cmd->add_option("--cache-mb", o.cacheMb,
+                    "Decoded terminal-set cache (default: the scene's cache.memory_mb)")
+        ->check(CLI::Range(1u, 1u << 24));
     cmd->add_option("--rate-limit", o.rateLimit,
                     "Requests per second per client address (burst: twice that); 0: off")
         ->check(CLI::Range(0.0, 1e9))
@@ -72,7 +75,7 @@ int runServeCommand(ServeOptions o) {
     for (const std::string& credit : built.attributions) std::cerr << "hexlod serve: data " << credit << "\n";
 
     cache::CacheOptions cacheOptions;
-    cacheOptions.memoryBudgetBytes = config.cache.memoryBytes;
+    cacheOptions.memoryBudgetBytes = o.cacheMb ? uint64_t(o.cacheMb) << 20 : config.cache.memoryBytes;
     cacheOptions.diskBudgetBytes = config.cache.diskBytes;
     cacheOptions.diskPath = config.cache.diskPath;
     server::ServiceOptions serviceOptions;

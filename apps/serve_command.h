@@ -19,7 +19,8 @@ struct ServeOptions {
     uint32_t generators = 2;
     std::string token; // default: $HEXLOD_TOKEN
     std::string webRoot = "web/dist";
-    uint32_t payloadCacheMb = 256;
+    uint32_t payloadCacheMb = 512;
+    uint32_t cacheMb = 0; // decoded terminal sets; 0: the scene's cache.memory_mb
     double rateLimit = 1000.0;
 };
 

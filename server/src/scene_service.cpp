@@ -2,6 +2,7 @@
 // Content generation is in scene_service_content.cpp, the JSON views in scene_service_json.cpp.
 #include "hexlod/server/scene_service.h"
 
+#include "hexlod/grammar/bulk_allocator.h"
 #include "hexlod/grammar/position_hash.h"
 #include "hexlod/server/http_types.h"
 
@@ -67,6 +68,7 @@ std::unique_ptr<SceneService> SceneService::create(scene::BuiltScene scene, cach
         return nullptr;
     }
     SceneService& s = *service;
+    grammar::setBulkPoolLimit(s.options_.bulkPoolBytes);
     for (const std::string& note : s.catalog_->scene().notes) s.notes_.push_back(note);
     JournalOpenOptions journalOptions;
     journalOptions.repair = s.options_.journalRepair;
@@ -332,10 +334,16 @@ void SceneService::renderMetrics(PrometheusText& out) const {
     perTier("hexlod_cache_entries", "gauge", "Entries held per tier.",
             [](const Tier& t) { return t.entries; });
     out.family("hexlod_cache_budget_bytes", "gauge", "Byte budget per memory tier.");
+    out.sample("hexlod_cache_budget_bytes", {{"tier", "decoded"}}, static_cast<double>(decodedBudget_));
     out.sample("hexlod_cache_budget_bytes", {{"tier", "terminal_payload"}},
                static_cast<double>(terminal.budget));
     out.sample("hexlod_cache_budget_bytes", {{"tier", "extruded_payload"}},
                static_cast<double>(extruded.budget));
+
+    out.family("hexlod_bulk_pool_bytes", "gauge", "Released expansion blocks kept for reuse (bounded).");
+    out.sample("hexlod_bulk_pool_bytes", {}, static_cast<double>(grammar::bulkPoolBytes()));
+    out.family("hexlod_bulk_pool_limit_bytes", "gauge", "What the expansion block pool may keep.");
+    out.sample("hexlod_bulk_pool_limit_bytes", {}, static_cast<double>(options_.bulkPoolBytes));
 
     const GenerationPoolStats pool = pool_.stats();
     out.family("hexlod_batch_expansions_total", "counter", "Batch expansions (grammar runs) of the service.");

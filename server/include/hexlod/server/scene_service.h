@@ -44,6 +44,9 @@ struct ServiceOptions {
     uint32_t generationQueue = 64; // distinct batches waiting to generate; beyond it: 503
     uint64_t terminalPayloadBytes = uint64_t(192) << 20;
     uint64_t extrudedPayloadBytes = uint64_t(64) << 20;
+    // Released expansion blocks kept for reuse (grammar::setBulkPoolLimit, process-wide): part
+    // of the service's memory besides its caches, so it is bounded here.
+    uint64_t bulkPoolBytes = uint64_t(256) << 20;
     int zstdLevel = 3;
     bool editsNeedToken = false; // for the summary's capabilities
 };
