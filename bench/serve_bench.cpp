@@ -228,8 +228,16 @@ int main(int argc, char** argv) {
     try {
         Json out;
         if (o.mode == "edits") {
-            out["single_building"] =
-                measureEdits(o, "{\"buildings\":[" + std::to_string(o.building) + "]}", false);
+            // One building of each building grammar (their batches differ a lot in size), then a
+            // whole grammar.
+            http_client::Connection c("127.0.0.1", o.port);
+            std::map<std::string, uint32_t> firstOf;
+            const size_t buildings = getJson(c, "/api/v1/scene")["counts"]["buildings"];
+            for (uint32_t id = o.building; id < buildings && firstOf.size() < 2; id += 97)
+                firstOf.emplace(getJson(c, "/api/v1/buildings/" + std::to_string(id))["grammar_name"], id);
+            for (const auto& [grammarName, id] : firstOf)
+                out["single_building"][grammarName] =
+                    measureEdits(o, "{\"buildings\":[" + std::to_string(id) + "]}", false);
             out["whole_grammar"] = measureEdits(o, "{\"grammar\":\"" + o.grammar + "\"}", true);
         } else if (o.mode == "sizes") {
             out = measureSizes(o);
