@@ -27,6 +27,7 @@ void EventStream::start(std::optional<uint64_t> lastEventId) {
                                                 "Cache-Control: no-store\r\n"
                                                 "Connection: keep-alive\r\n"
                                                 "X-Accel-Buffering: no\r\n"
+                                                "Access-Control-Allow-Origin: *\r\n"
                                                 "Server: hexlod\r\n"
                                                 "\r\n"
                                                 "retry: 2000\n\n"));

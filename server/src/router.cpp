@@ -95,6 +95,15 @@ std::string Router::dispatch(const Request& request, Respond respond) const {
         }
         const std::string name = route.method + " " + route.pattern;
         if (route.needsToken && !authorised(request, respond)) return name;
+        if (method == "GET" && !target.segments.empty() && target.segments[0] == "api") {
+            // Reads may come from any origin (a viewer served elsewhere, a dev server): the data
+            // is public and read-only. Writes get no such header, so a browser keeps other
+            // origins' pages from posting edits (their JSON body needs a CORS preflight).
+            respond = [inner = std::move(respond)](Reply reply) {
+                reply.set("Access-Control-Allow-Origin", "*");
+                inner(std::move(reply));
+            };
+        }
         route.handler(RequestContext{request, target, params, head}, std::move(respond));
         return name;
     }

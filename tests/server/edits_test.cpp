@@ -45,6 +45,7 @@ TEST(Edits, AnEditChangesExactlyItsBatchAndTheOldUrlPointsToTheNewOne) {
                                                          "comment":"lower storeys"})");
     ASSERT_EQ(response.status, 200) << response.body;
     EXPECT_EQ(response.header("cache-control"), "no-store");
+    EXPECT_EQ(response.header("access-control-allow-origin"), ""); // writes only from the same origin
     const Json reply = Json::parse(response.body);
     EXPECT_EQ(reply["seq"], 1);
     EXPECT_EQ(reply["op"], "edit");

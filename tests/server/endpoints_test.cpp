@@ -115,6 +115,7 @@ TEST_F(Endpoints, CellIndexListsOriginsBoundsAndContentUrlsWithTheirKeys) {
     const auto response = live->get("/api/v1/cells");
     ASSERT_EQ(response.status, 200);
     EXPECT_EQ(response.header("cache-control"), "no-cache");
+    EXPECT_EQ(response.header("access-control-allow-origin"), "*"); // reads from any origin
     const Json index = Json::parse(response.body);
     size_t buildings = 0, trees = 0, batches = 0;
     for (const Json& cell : index["cells"]) {
