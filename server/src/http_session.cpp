@@ -45,7 +45,7 @@ std::string seconds(std::chrono::milliseconds ms) {
 } // namespace
 
 HttpSession::HttpSession(net::ip::tcp::socket socket, ServerContext& context)
-    : stream_(std::move(socket)), context_(context),
+    : stream_(std::move(socket)), deadline_(stream_.get_executor()), context_(context),
       open_(std::make_unique<OpenConnection>(context.service.metrics())),
       buffer_(context.options.maxHeaderBytes + context.options.maxBodyBytes + 4096) {
     beast::error_code ec;
@@ -77,7 +77,15 @@ void HttpSession::readHeader() {
     parser_->body_limit(context_.options.maxBodyBytes);
     // One deadline for idle time, header and body: a slow client cannot hold the connection
     // longer than requestTimeout per request, however it spaces its bytes.
-    stream_.expires_after(context_.options.requestTimeout);
+    stream_.expires_never();
+    timedOut_ = false;
+    deadline_.expires_after(context_.options.requestTimeout);
+    deadline_.async_wait([self = shared_from_this()](beast::error_code ec) {
+        if (ec) return; // re-armed or cancelled: the request arrived
+        self->timedOut_ = true;
+        beast::error_code ignored;
+        self->stream_.socket().cancel(ignored); // the read ends with operation_aborted
+    });
     http::async_read_header(
         stream_, buffer_, *parser_,
         [self = shared_from_this()](beast::error_code ec, size_t) { self->onHeader(ec); });
@@ -107,7 +115,8 @@ void HttpSession::readBody() {
 }
 
 void HttpSession::readFailed(beast::error_code ec) {
-    if (ec == beast::error::timeout) {
+    deadline_.cancel();
+    if (timedOut_ && ec == net::error::operation_aborted) {
         if (parser_ && parser_->got_some()) {
             route_ = "malformed";
             busy_ = true;
@@ -148,7 +157,7 @@ void HttpSession::readFailed(beast::error_code ec) {
 
 void HttpSession::onRequest(beast::error_code ec) {
     if (ec) return readFailed(ec);
-    stream_.expires_never(); // the handler may take a while (generation); writes set their own
+    deadline_.cancel(); // the handler may take a while (generation); writes set their own
     received_ = std::chrono::steady_clock::now();
     busy_ = true;
     auto& message = parser_->get();
@@ -275,6 +284,7 @@ void HttpSession::becomeEventStream(const Reply& r) {
 }
 
 void HttpSession::closeNow() {
+    deadline_.cancel();
     beast::error_code ignored;
     stream_.socket().shutdown(net::ip::tcp::socket::shutdown_both, ignored);
     stream_.socket().close(ignored);

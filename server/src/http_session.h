@@ -7,6 +7,7 @@
 #include "server_context.h"
 
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/core/tcp_stream.hpp>
 #include <boost/beast/http/parser.hpp>
@@ -40,6 +41,10 @@ private:
     void closeNow();
 
     boost::beast::tcp_stream stream_;
+    // The request deadline is a timer of our own: the stream's timeout closes the socket,
+    // which would leave no way to answer 408.
+    boost::asio::steady_timer deadline_;
+    bool timedOut_ = false;
     ServerContext& context_;
     std::unique_ptr<OpenConnection> open_;
     boost::beast::flat_buffer buffer_;

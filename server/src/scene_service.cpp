@@ -203,13 +203,16 @@ Json SceneService::publish(const std::vector<cells::KeyChange>& changes, uint64_
         state.key = change.after;
         ++state.version;
         const cells::Batch& batch = catalog_->batch(change.batch);
-        list.push_back({{"cell", {batch.cell.q, batch.cell.r}},
-                        {"grammar", batch.grammar},
-                        {"version", state.version},
-                        {"key", change.after.hex()},
-                        {"previous_key", change.before.hex()},
-                        {"terminal_set", contentUrl(PayloadKind::TerminalSet, change.batch, change.after)},
-                        {"extruded_set", contentUrl(PayloadKind::ExtrudedSet, change.batch, change.after)}});
+        list.push_back(
+            {{"cell", {batch.cell.q, batch.cell.r}},
+             {"grammar", batch.grammar},
+             {"version", state.version},
+             {"key", change.after.hex()},
+             {"previous_key", change.before.hex()},
+             {"terminal_set", contentUrl(PayloadKind::TerminalSet, change.batch, change.after)},
+             {"extruded_set", contentUrl(PayloadKind::ExtrudedSet, change.batch, change.after)},
+             {"previous_terminal_set", contentUrl(PayloadKind::TerminalSet, change.batch, change.before)},
+             {"previous_extruded_set", contentUrl(PayloadKind::ExtrudedSet, change.batch, change.before)}});
     }
     lastSeq_ = seq;
     return list;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <thread>
+
 namespace hexlod::test {
 namespace {
 
@@ -165,6 +167,49 @@ TEST(BadRequests, KeepAliveServesManyRequestsOnOneConnectionAndPipelinesInOrder)
     EXPECT_EQ(connection.readResponse().status, 404);
     EXPECT_EQ(connection.readResponse().status, 200);
     EXPECT_TRUE(connection.isOpen());
+}
+
+TEST(Limits, ARequestRateAboveTheLimitGets429WithRetryAfter) {
+    server::ServerOptions options = LiveServer::quietOptions();
+    options.rateLimit = 1.0;
+    options.rateBurst = 5.0;
+    LiveServer live({}, options);
+    http_client::Connection connection("127.0.0.1", live.port());
+    for (int i = 0; i < 5; ++i) EXPECT_EQ(connection.get("/healthz").status, 200) << i;
+    const http_client::Response limited = connection.get("/healthz");
+    EXPECT_EQ(limited.status, 429);
+    EXPECT_EQ(limited.header("retry-after"), "1");
+    EXPECT_NE(limited.body.find("too many requests"), std::string::npos) << limited.body;
+    EXPECT_TRUE(connection.isOpen()); // refused, not disconnected
+}
+
+TEST(Limits, ARequestThatDoesNotArriveInTimeGets408AndAnIdleConnectionIsClosed) {
+    server::ServerOptions options = LiveServer::quietOptions();
+    options.requestTimeout = std::chrono::milliseconds(300);
+    LiveServer live({}, options);
+    http_client::Connection slow("127.0.0.1", live.port());
+    const http_client::Response timedOut =
+        slow.raw("GET /api/v1/scene HTTP/1.1\r\nHost: te"); // never finished
+    EXPECT_EQ(timedOut.status, 408);
+    EXPECT_NE(timedOut.body.find("did not arrive within 0.3 s"), std::string::npos) << timedOut.body;
+    http_client::Connection idle("127.0.0.1", live.port());
+    EXPECT_EQ(idle.get("/healthz").status, 200);
+    std::this_thread::sleep_for(std::chrono::milliseconds(600));
+    EXPECT_EQ(idle.get("/healthz").status, 0); // closed by the server meanwhile
+}
+
+TEST(Limits, ConnectionsBeyondTheLimitAreTurnedAwayWith503) {
+    server::ServerOptions options = LiveServer::quietOptions();
+    options.maxConnections = 2;
+    LiveServer live({}, options);
+    http_client::Connection first("127.0.0.1", live.port()), second("127.0.0.1", live.port());
+    EXPECT_EQ(first.get("/healthz").status, 200);
+    EXPECT_EQ(second.get("/healthz").status, 200);
+    http_client::Connection third("127.0.0.1", live.port());
+    const http_client::Response refused = third.readResponse();
+    EXPECT_EQ(refused.status, 503);
+    EXPECT_EQ(refused.header("retry-after"), "1");
+    EXPECT_EQ(first.get("/healthz").status, 200); // the others keep being served
 }
 
 } // namespace

@@ -58,6 +58,7 @@ TEST(Edits, AnEditChangesExactlyItsBatchAndTheOldUrlPointsToTheNewOne) {
                   std::to_string(change["grammar"].get<int>()) + "/" + change["key"].get<std::string>(),
               change["terminal_set"]);
     EXPECT_NE(change["terminal_set"], before);
+    EXPECT_EQ(change["previous_terminal_set"], before);
 
     const auto stale = live.get(before);
     EXPECT_EQ(stale.status, 404);
