@@ -4,6 +4,8 @@
 
 #include "hexlod/cells/batch_catalog.h"
 #include "hexlod/scene/scene_builder.h"
+#include "hexlod/server/edit_journal.h"
+#include "hexlod/server/scene_export.h"
 
 #include <nlohmann/json.hpp>
 
@@ -28,10 +30,25 @@ bool parseCell(const std::string& text, cells::HexCoord& out) {
            number(std::string_view(text).substr(comma + 1), out.r);
 }
 
-// The scene-config export (a .json output) comes with the edit journal in the service module.
-int runSceneConfigExport(const ExportOptions&) {
-    std::cerr << "hexlod export: scene-config export is not available in this build\n";
-    return 2;
+// A .json output: the scene config with the journal's edits as overrides (server/scene_export.h).
+int runSceneConfigExport(const ExportOptions& o) {
+    scene::SceneConfig config;
+    std::string error;
+    if (!scene::loadSceneConfig(o.scenePath, config, error)) {
+        std::cerr << "hexlod export: " << error << "\n";
+        return 2;
+    }
+    const std::string journal = o.journal.empty() ? server::defaultJournalPath(o.scenePath) : o.journal;
+    server::ExportReport report;
+    if (!server::exportEditedScene(config, journal, o.output, report, error)) {
+        std::cerr << "hexlod export: " << error << "\n";
+        return 1;
+    }
+    for (const std::string& note : report.notes) std::cerr << "hexlod export: " << note << "\n";
+    std::cout << "hexlod export: " << o.output << ": " << report.entries << " journal entries, "
+              << report.editedBuildings << " edited buildings in " << report.overrides << " overrides, "
+              << report.editedSpecies << " edited tree species\n";
+    return 0;
 }
 
 void printReport(const CityExportReport& r, const std::string& output, bool flatten) {
@@ -60,7 +77,9 @@ CLI::App* registerExportCommand(CLI::App& app, ExportOptions& o) {
            "Cells to export as q,r (repeat the option or list several; default: every occupied cell)")
         ->expected(1, -1)
         ->allow_extra_args();
-    cmd->add_option("--journal", o.journal, "With a .json output: the edit journal to apply");
+    cmd->add_option(
+        "--journal", o.journal,
+        "With a .json output: the edit journal to apply (default: beside the scene, as hexlod serve)");
     cmd->add_flag("--flatten", o.flatten,
                   "Bake every instance into plain meshes instead of EXT_mesh_gpu_instancing");
     cmd->add_option("--max-bytes", o.maxBytes,

@@ -6,6 +6,7 @@
 #include "expand_command.h"
 #include "export_command.h"
 #include "import_command.h"
+#include "serve_command.h"
 #include "walk_command.h"
 
 #include <CLI/CLI.hpp>
@@ -33,6 +34,8 @@ int main(int argc, char** argv) {
     hexlod::apps::registerBenchErrorCommand(*bench, benchError, benchErrorCommand);
     hexlod::apps::WalkOptions walk;
     CLI::App* walkCommand = hexlod::apps::registerWalkCommand(app, walk);
+    hexlod::apps::ServeOptions serve;
+    CLI::App* serveCommand = hexlod::apps::registerServeCommand(app, serve);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -44,6 +47,7 @@ int main(int argc, char** argv) {
     if (walkCommand->parsed()) return hexlod::apps::runWalkCommand(walk);
     if (bakeCommand->parsed()) return hexlod::apps::runBakeCommand(bake);
     if (benchErrorCommand->parsed()) return hexlod::apps::runBenchErrorCommand(benchError);
+    if (serveCommand->parsed()) return hexlod::apps::runServeCommand(serve);
     if (exportCommand->parsed()) return hexlod::apps::runExportCommand(exportOptions);
     return 0;
 }

@@ -11,8 +11,10 @@ packages=(
     libosmium2-dev libprotozero-dev zlib1g-dev libbz2-dev libexpat1-dev
     libegl-dev libegl-mesa0 libgl-dev libgl1-mesa-dri libosmesa6-dev
     libopenexr-dev libstb-dev libflann-dev liblz4-dev libtinygltf-dev
+    libboost-dev
     googletest libgtest-dev libbenchmark-dev
     clang-14 libclang-rt-14-dev clang-format
+    wrk curl python3
 )
 
 run_as_root() {

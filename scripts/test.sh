@@ -2,7 +2,7 @@
 # README command 2: every check CI runs, in order. The Release suite runs last so that
 # the output ends in CTest's summary.
 #   1. ASan+UBSan build, unit tests
-#   2. libFuzzer smoke run of the grammar parser (FUZZ_SECONDS, default 60)
+#   2. libFuzzer smoke runs: grammar parser, HTTP requests, extruded-set decoder (FUZZ_SECONDS, default 60)
 #   3. Release build, the whole suite (unit, command line, clang-format check)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,7 +15,7 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DHEXLOD_SANITIZE=ON 
 cmake --build build-asan
 ctest --test-dir build-asan -L unit --output-on-failure -j "$jobs"
 
-echo "== fuzz: grammar parser smoke run"
+echo "== fuzz: smoke runs"
 CXX=clang++-14 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHEXLOD_FUZZ=ON
 cmake --build build-fuzz
 scripts/fuzz-smoke.sh build-fuzz "${FUZZ_SECONDS:-60}"

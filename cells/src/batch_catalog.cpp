@@ -1,7 +1,5 @@
 #include "hexlod/cells/batch_catalog.h"
 
-#include "hexlod/grammar/batch_expander.h"
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -14,6 +12,8 @@ namespace hexlod::cells {
 namespace {
 
 template <class... Ts> struct Overloaded : Ts... { using Ts::operator()...; };
+// Clang 14 does not deduce aggregate template arguments by itself (P1816).
+template <class... Ts> Overloaded(Ts...) -> Overloaded<Ts...>;
 
 std::string cellName(HexCoord c) {
     return "(" + std::to_string(c.q) + ", " + std::to_string(c.r) + ")";
@@ -91,6 +91,11 @@ grammar::TerminalSet BatchCatalog::generate(uint32_t b, std::span<const grammar:
 grammar::BatchResult BatchCatalog::expand(uint32_t b) const {
     const std::vector<grammar::BuildingInput> inputs = inputsOf(b);
     return expandSnapshot(b, inputs, key(b));
+}
+
+grammar::BatchResult BatchCatalog::expand(uint32_t b, std::span<const grammar::BuildingInput> inputs,
+                                          const cache::BatchKey& batchKey) const {
+    return expandSnapshot(b, inputs, batchKey);
 }
 
 grammar::ExtrudedSet BatchCatalog::expandExtruded(uint32_t b) const {

@@ -78,7 +78,8 @@ bool Scheduler::isTreeBatch(uint32_t batch) const {
 bool Scheduler::wantsTrees(double distance, const Camera& camera) const {
     if (options_.treeGeometricError <= 0.0) return true;
     if (distance <= 0.0) return true;
-    const double sse = options_.treeGeometricError * camera.viewportHeight / (distance * 2.0 * std::tan(camera.fovY * 0.5));
+    const double sse =
+        options_.treeGeometricError * camera.viewportHeight / (distance * 2.0 * std::tan(camera.fovY * 0.5));
     return sse > options_.lod.maxScreenSpaceError;
 }
 

@@ -1,5 +1,6 @@
 #include "hexlod/grammar/bulk_allocator.h"
 
+#include <iterator>
 #include <map>
 #include <mutex>
 
@@ -14,7 +15,7 @@ namespace {
 // would hand out fresh pages that it must zero again: in steady state (cells expanded and
 // evicted all the time) that zeroing cost more than the expansion itself. Bounded, so a
 // one-off giant batch does not pin its memory forever.
-constexpr size_t kMaxRetainedBytes = size_t(2) << 30;
+constexpr size_t kDefaultRetainedBytes = size_t(2) << 30;
 
 class BlockPool {
 public:
@@ -29,10 +30,24 @@ public:
     }
     bool give(void* pointer, size_t bytes) {
         std::lock_guard lock(mutex_);
-        if (retained_ + bytes > kMaxRetainedBytes) return false;
+        if (retained_ + bytes > limit_) return false;
         free_.emplace(bytes, pointer);
         retained_ += bytes;
         return true;
+    }
+    void setLimit(size_t bytes) {
+        std::lock_guard lock(mutex_);
+        limit_ = bytes;
+        while (retained_ > limit_) {
+            const auto largest = std::prev(free_.end());
+            retained_ -= largest->first;
+            std::free(largest->second);
+            free_.erase(largest);
+        }
+    }
+    size_t retained() {
+        std::lock_guard lock(mutex_);
+        return retained_;
     }
     ~BlockPool() {
         for (const auto& [bytes, pointer] : free_) std::free(pointer);
@@ -42,6 +57,7 @@ private:
     std::mutex mutex_;
     std::multimap<size_t, void*> free_;
     size_t retained_ = 0;
+    size_t limit_ = kDefaultRetainedBytes;
 };
 
 BlockPool& pool() {
@@ -72,3 +88,15 @@ void releaseBulk(void* pointer, size_t bytes) noexcept {
 }
 
 } // namespace hexlod::grammar::detail
+
+namespace hexlod::grammar {
+
+void setBulkPoolLimit(size_t bytes) {
+    detail::pool().setLimit(bytes);
+}
+
+size_t bulkPoolBytes() {
+    return detail::pool().retained();
+}
+
+} // namespace hexlod::grammar

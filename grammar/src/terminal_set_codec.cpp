@@ -8,12 +8,11 @@
 
 #include "hexlod/grammar/position_hash.h"
 
-#include <zstd.h>
+#include "zstd_frame.h"
 
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <memory>
 
 namespace hexlod::grammar {
 
@@ -28,31 +27,10 @@ constexpr size_t kChecksumOffset = 8;
 constexpr size_t kCoveredHeaderOffset = 16;        // the checksum covers the header from here on
 constexpr uint64_t kMaxShapes = uint64_t(1) << 16; // shape ids are 16 bits
 
-template <typename T> void put(std::vector<uint8_t>& out, size_t offset, T value) {
-    std::memcpy(out.data() + offset, &value, sizeof(T));
-}
-template <typename T> T get(std::span<const uint8_t> in, size_t offset) {
-    T value;
-    std::memcpy(&value, in.data() + offset, sizeof(T));
-    return value;
-}
-
-uint32_t zigzag(uint32_t delta) {
-    return (delta << 1) ^ static_cast<uint32_t>(static_cast<int32_t>(delta) >> 31);
-}
-uint32_t unzigzag(uint32_t z) {
-    return (z >> 1) ^ (0u - (z & 1u));
-}
-
-struct ZstdContexts {
-    std::unique_ptr<ZSTD_CCtx, size_t (*)(ZSTD_CCtx*)> compress{ZSTD_createCCtx(), ZSTD_freeCCtx};
-    std::unique_ptr<ZSTD_DCtx, size_t (*)(ZSTD_DCtx*)> decompress{ZSTD_createDCtx(), ZSTD_freeDCtx};
-};
-// One pair per thread: creating a level-3 context costs more than encoding a small batch.
-ZstdContexts& contexts() {
-    thread_local ZstdContexts c;
-    return c;
-}
+using detail::get;
+using detail::put;
+using detail::unzigzag;
+using detail::zigzag;
 
 void writeFixedHeader(std::vector<uint8_t>& out, const TerminalSet& set, uint64_t bodyBytes) {
     std::memcpy(out.data(), kMagic, sizeof(kMagic));
@@ -70,51 +48,6 @@ void writeFixedHeader(std::vector<uint8_t>& out, const TerminalSet& set, uint64_
     put<uint32_t>(out, 88, static_cast<uint32_t>(set.countPerShape.size()));
     for (size_t s = 0; s < set.countPerShape.size(); ++s)
         put<uint32_t>(out, kTerminalSetFixedHeaderBytes + 4 * s, set.countPerShape[s]);
-}
-
-// Streams the frame into a buffer that grows with what really comes out, so a header that
-// claims a gigabyte costs nothing unless the frame delivers it. One byte of room beyond the
-// expected size tells "the frame holds more" apart from "the frame ends here".
-bool decompressBody(std::span<const uint8_t> frame, uint64_t expected, std::vector<uint8_t>& body,
-                    std::string& error) {
-    const unsigned long long declared = ZSTD_getFrameContentSize(frame.data(), frame.size());
-    if (declared == ZSTD_CONTENTSIZE_ERROR) return error = "body is not a zstd frame", false;
-    if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != expected)
-        return error = "body declares " + std::to_string(declared) + " bytes, the header needs " +
-                       std::to_string(expected),
-               false;
-    ZSTD_DCtx* dctx = contexts().decompress.get();
-    ZSTD_DCtx_reset(dctx, ZSTD_reset_session_only);
-    const uint64_t limit = expected + 1;
-    body.resize(
-        static_cast<size_t>(std::min<uint64_t>(limit, std::max<uint64_t>(frame.size() * 8, 1 << 16))));
-    ZSTD_inBuffer in{frame.data(), frame.size(), 0};
-    size_t produced = 0;
-    size_t remaining = 1; // zstd's hint; 0 once the frame is complete
-    while (true) {
-        if (produced == body.size()) {
-            if (body.size() == limit) break;
-            body.resize(static_cast<size_t>(std::min<uint64_t>(limit, body.size() * 2)));
-        }
-        ZSTD_outBuffer out{body.data(), body.size(), produced};
-        const size_t consumed = in.pos;
-        remaining = ZSTD_decompressStream(dctx, &out, &in);
-        if (ZSTD_isError(remaining))
-            return error = std::string("corrupt body: ") + ZSTD_getErrorName(remaining), false;
-        const bool stalled = out.pos == produced && in.pos == consumed;
-        produced = out.pos;
-        if (remaining == 0) break;
-        if (stalled) return error = "truncated body", false; // it had room to write, so it lacks input
-    }
-    if (remaining != 0 || produced > expected)
-        return error = "body decodes to more than the header's record count", false;
-    if (in.pos != in.size) return error = "trailing bytes after the body", false;
-    if (produced != expected)
-        return error = "body decodes to " + std::to_string(produced) + " bytes, the header needs " +
-                       std::to_string(expected),
-               false;
-    body.resize(produced);
-    return true;
 }
 
 } // namespace
@@ -166,15 +99,8 @@ std::vector<uint8_t> encodeTerminalSet(const TerminalSet& set, int zstdLevel) {
     }
 
     const size_t countsEnd = kTerminalSetFixedHeaderBytes + 4 * set.countPerShape.size();
-    std::vector<uint8_t> out(countsEnd + ZSTD_compressBound(body.size()));
-    ZSTD_CCtx* cctx = contexts().compress.get();
-    ZSTD_CCtx_reset(cctx, ZSTD_reset_session_and_parameters);
-    ZSTD_CCtx_setParameter(cctx, ZSTD_c_compressionLevel, zstdLevel);
-    const size_t bodyBytes =
-        ZSTD_compress2(cctx, out.data() + countsEnd, out.size() - countsEnd, body.data(), body.size());
-    // The bound makes the only failure a bad level, which zstd clamps instead of failing.
-    const size_t frameBytes = ZSTD_isError(bodyBytes) ? 0 : bodyBytes;
-    out.resize(countsEnd + frameBytes);
+    std::vector<uint8_t> out;
+    const size_t frameBytes = detail::compressFrame(body, zstdLevel, out, countsEnd);
     writeFixedHeader(out, set, frameBytes);
     const std::span<const uint8_t> covered(out.data() + kCoveredHeaderOffset,
                                            countsEnd - kCoveredHeaderOffset);
@@ -234,7 +160,8 @@ bool decodeTerminalSet(std::span<const uint8_t> payload, TerminalSet& out, std::
     const size_t countsEnd = kTerminalSetFixedHeaderBytes + 4 * shapes;
     const size_t n = static_cast<size_t>(info.recordCount);
     std::vector<uint8_t> body;
-    if (!decompressBody(payload.subspan(countsEnd), info.recordCount * sizeof(TerminalRecord), body, error))
+    if (!detail::decompressFrame(payload.subspan(countsEnd), info.recordCount * sizeof(TerminalRecord), body,
+                                 error))
         return false;
     if (checksum64(body, checksum64(payload.subspan(kCoveredHeaderOffset,
                                                     countsEnd - kCoveredHeaderOffset))) != info.checksum)

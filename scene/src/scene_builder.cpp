@@ -92,6 +92,7 @@ private:
                                                         : "buildings[" + std::to_string(source) + "]";
         input.parameters = resolve(batch.grammar, list, field);
         input.id = nextId_++;
+        out_.buildingOrigins.push_back({static_cast<uint32_t>(source), localId});
         batch.buildings.push_back(std::move(input));
     }
 
@@ -173,6 +174,7 @@ private:
             input.footprint = {p + glm::dvec2(-half, -half), p + glm::dvec2(half, -half),
                                p + glm::dvec2(half, half), p + glm::dvec2(-half, half)};
             input.parameters = speciesParams[s];
+            out_.treeSpecies.push_back(static_cast<uint32_t>(s));
             out_.treeGrammars[speciesBatch[s]].buildings.push_back(std::move(input));
         }
         out_.notes.push_back("vegetation: " + std::to_string(trees_.size()) + " trees of " +

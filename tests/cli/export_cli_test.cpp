@@ -81,10 +81,11 @@ TEST(ExportCli, SceneShapesComeFromGltfFilesWithWarningsForBadOnes) {
 
 TEST(ExportCli, DispatchesOnTheOutputExtension) {
     const std::string scene = "export --scene " + kConfigs + "/default.json ";
-    const CommandResult json = runHexlod(scene + "-o " + ::testing::TempDir() + "scene.json");
-    EXPECT_EQ(json.exitCode, 2);
-    EXPECT_NE(json.err.find("scene-config export is not available in this build"), std::string::npos)
-        << json.err;
+    // .json goes to the scene-config export, which needs the scene's journal (none here).
+    const CommandResult json = runHexlod(scene + "-o " + ::testing::TempDir() + "scene.json --journal " +
+                                         ::testing::TempDir() + "no-such-journal.jsonl");
+    EXPECT_EQ(json.exitCode, 1);
+    EXPECT_NE(json.err.find("no edit journal at"), std::string::npos) << json.err;
     const CommandResult obj = runHexlod(scene + "-o " + ::testing::TempDir() + "city.obj");
     EXPECT_EQ(obj.exitCode, 2);
     EXPECT_NE(obj.err.find("must end in .glb, .gltf or .json"), std::string::npos) << obj.err;

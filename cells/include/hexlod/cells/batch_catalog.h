@@ -99,6 +99,10 @@ public:
     // Expands a snapshot taken with inputsOf() under the key the batch had then.
     grammar::TerminalSet generate(uint32_t batch, std::span<const grammar::BuildingInput> inputs,
                                   const cache::BatchKey& key) const;
+    // The same expansion with everything it gives: the terminal set (header and key filled),
+    // the extruded set and the issues.
+    grammar::BatchResult expand(uint32_t batch, std::span<const grammar::BuildingInput> inputs,
+                                const cache::BatchKey& key) const;
     // The cached set of the batch's current key, generated on a miss.
     std::shared_ptr<const grammar::TerminalSet> fetch(uint32_t batch, cache::TerminalSetCache& cache) const;
 

@@ -4,8 +4,8 @@
 //   zero-fill pass runs before the scatter;
 // - allocations of 4 MiB and more are 2 MiB aligned and asked to use transparent huge pages,
 //   which cuts first-touch page faults 512-fold (they were a third of expansion time);
-// - released large blocks are pooled (up to 2 GiB) for the next batch, so steady-state
-//   expansion does not pay the kernel to zero fresh pages again.
+// - released large blocks are pooled (up to 2 GiB by default, setBulkPoolLimit) for the next
+//   batch, so steady-state expansion does not pay the kernel to zero fresh pages again.
 #pragma once
 
 #include <cstddef>
@@ -16,6 +16,11 @@
 #include <utility>
 
 namespace hexlod::grammar {
+
+// Bytes of released blocks the pool may keep; a long-running service lowers it so that its
+// memory stays near its cache budgets. Blocks beyond a lowered limit are freed at once.
+void setBulkPoolLimit(size_t bytes);
+size_t bulkPoolBytes(); // retained now
 
 namespace detail {
 constexpr size_t kHugePage = size_t(2) << 20;

@@ -67,11 +67,11 @@ struct FrameStats {
     std::array<uint64_t, 5> terminalsPerLod{}; // LOD2..LOD4 drawn terminals (0 and 1 unused)
     std::array<uint32_t, 5> cellsPerLod{};     // cells in view: 0 and 1 extruded, 4 with terminal sets
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
-    uint32_t treeBillboards = 0; // submitted (near ones are dropped on the GPU)
+    uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint64_t cacheLookups = 0, cacheHits = 0; // this frame's
-    uint64_t cacheBytes = 0;     // terminal sets in the cache's memory tier
-    uint64_t gpuBytes = 0;       // arena, draw lists, meshes, base volumes, frame target
-    uint64_t impostorBytes = 0;  // impostor textures
+    uint64_t cacheBytes = 0;                  // terminal sets in the cache's memory tier
+    uint64_t gpuBytes = 0;                    // arena, draw lists, meshes, base volumes, frame target
+    uint64_t impostorBytes = 0;               // impostor textures
     uint64_t residentBytes() const { return cacheBytes + gpuBytes + impostorBytes; }
 };
 

@@ -17,13 +17,21 @@ struct GrammarBuildings {
     std::vector<grammar::BuildingInput> buildings; // parameters resolved; ids unique in the scene
 };
 
+// Where a building came from: the config names buildings by source and the source's own id.
+struct BuildingOrigin {
+    uint32_t source = 0;   // index into SceneConfig::sources
+    uint32_t sourceId = 0; // the id BuildingOverride::buildings uses
+};
+
 struct BuiltScene {
     SceneConfig config;
     std::vector<GrammarBuildings> buildingGrammars; // one per config grammar, in config order
     std::vector<GrammarBuildings> treeGrammars;     // one per distinct species grammar; empty without trees
     std::vector<RoadSegment> roads;
-    std::vector<std::string> notes;        // what was started, skipped or left out, and why
-    std::vector<std::string> attributions; // e.g. "© OpenStreetMap contributors"
+    std::vector<std::string> notes;              // what was started, skipped or left out, and why
+    std::vector<std::string> attributions;       // e.g. "© OpenStreetMap contributors"
+    std::vector<BuildingOrigin> buildingOrigins; // by BuildingInput::id of the building grammars
+    std::vector<uint32_t> treeSpecies;           // by tree BuildingInput::id: index into config.trees.species
     size_t buildingCount() const;
     size_t treeCount() const;
 };

@@ -1,0 +1,82 @@
+#include "zstd_frame.h"
+
+#include <zstd.h>
+
+#include <algorithm>
+#include <memory>
+
+namespace hexlod::grammar::detail {
+namespace {
+
+struct ZstdContexts {
+    std::unique_ptr<ZSTD_CCtx, size_t (*)(ZSTD_CCtx*)> compress{ZSTD_createCCtx(), ZSTD_freeCCtx};
+    std::unique_ptr<ZSTD_DCtx, size_t (*)(ZSTD_DCtx*)> decompress{ZSTD_createDCtx(), ZSTD_freeDCtx};
+};
+// One pair per thread: creating a level-3 context costs more than encoding a small batch.
+ZstdContexts& contexts() {
+    thread_local ZstdContexts c;
+    return c;
+}
+
+} // namespace
+
+size_t compressFrame(std::span<const uint8_t> body, int level, std::vector<uint8_t>& out, size_t offset) {
+    out.resize(offset + ZSTD_compressBound(body.size()));
+    ZSTD_CCtx* cctx = contexts().compress.get();
+    ZSTD_CCtx_reset(cctx, ZSTD_reset_session_and_parameters);
+    ZSTD_CCtx_setParameter(cctx, ZSTD_c_compressionLevel, level);
+    const size_t bytes =
+        ZSTD_compress2(cctx, out.data() + offset, out.size() - offset, body.data(), body.size());
+    // The bound makes the only failure a bad level, which zstd clamps instead of failing.
+    const size_t frameBytes = ZSTD_isError(bytes) ? 0 : bytes;
+    out.resize(offset + frameBytes);
+    // The bound is about the raw size: a payload kept in a cache must not hold that much.
+    out.shrink_to_fit();
+    return frameBytes;
+}
+
+// One byte of room beyond the expected size tells "the frame holds more" apart from "the
+// frame ends here".
+bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::vector<uint8_t>& body,
+                     std::string& error) {
+    const unsigned long long declared = ZSTD_getFrameContentSize(frame.data(), frame.size());
+    if (declared == ZSTD_CONTENTSIZE_ERROR) return error = "body is not a zstd frame", false;
+    if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != expected)
+        return error = "body declares " + std::to_string(declared) + " bytes, the header needs " +
+                       std::to_string(expected),
+               false;
+    ZSTD_DCtx* dctx = contexts().decompress.get();
+    ZSTD_DCtx_reset(dctx, ZSTD_reset_session_only);
+    const uint64_t limit = expected + 1;
+    body.resize(
+        static_cast<size_t>(std::min<uint64_t>(limit, std::max<uint64_t>(frame.size() * 8, 1 << 16))));
+    ZSTD_inBuffer in{frame.data(), frame.size(), 0};
+    size_t produced = 0;
+    size_t remaining = 1; // zstd's hint; 0 once the frame is complete
+    while (true) {
+        if (produced == body.size()) {
+            if (body.size() == limit) break;
+            body.resize(static_cast<size_t>(std::min<uint64_t>(limit, body.size() * 2)));
+        }
+        ZSTD_outBuffer out{body.data(), body.size(), produced};
+        const size_t consumed = in.pos;
+        remaining = ZSTD_decompressStream(dctx, &out, &in);
+        if (ZSTD_isError(remaining))
+            return error = std::string("corrupt body: ") + ZSTD_getErrorName(remaining), false;
+        const bool stalled = out.pos == produced && in.pos == consumed;
+        produced = out.pos;
+        if (remaining == 0) break;
+        if (stalled) return error = "truncated body", false; // it had room to write, so it lacks input
+    }
+    if (remaining != 0 || produced > expected)
+        return error = "body decodes to more than the header says", false;
+    if (in.pos != in.size) return error = "trailing bytes after the body", false;
+    if (produced != expected)
+        return error = "body decodes to " + std::to_string(produced) + " bytes, the header needs " +
+                       std::to_string(expected),
+               false;
+    body.resize(produced);
+    return true;
+}
+
+} // namespace hexlod::grammar::detail

@@ -1,0 +1,41 @@
+// The zstd plumbing both payload codecs share (terminal sets and extruded sets,
+// docs/protocol.md): one compression and one decompression context per thread, and a
+// decompressor that grows its output with what the frame really delivers, so a header
+// that claims gigabytes costs nothing unless the frame holds them.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace hexlod::grammar::detail {
+
+template <typename T> void put(std::vector<uint8_t>& out, size_t offset, T value) {
+    std::memcpy(out.data() + offset, &value, sizeof(T));
+}
+template <typename T> T get(std::span<const uint8_t> in, size_t offset) {
+    T value;
+    std::memcpy(&value, in.data() + offset, sizeof(T));
+    return value;
+}
+
+inline uint32_t zigzag(uint32_t delta) {
+    return (delta << 1) ^ static_cast<uint32_t>(static_cast<int32_t>(delta) >> 31);
+}
+inline uint32_t unzigzag(uint32_t z) {
+    return (z >> 1) ^ (0u - (z & 1u));
+}
+
+// Compresses `body` into one zstd frame appended to `out` after its first `offset` bytes
+// (`out` is resized to offset + frame size). Returns the frame size.
+size_t compressFrame(std::span<const uint8_t> body, int level, std::vector<uint8_t>& out, size_t offset);
+
+// Decompresses one frame that must decode to exactly `expected` bytes and fill `frame`
+// completely. On failure returns false with `error` saying why (not a frame, corrupt,
+// truncated, too long or short, trailing bytes).
+bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::vector<uint8_t>& body,
+                     std::string& error);
+
+} // namespace hexlod::grammar::detail

@@ -1,0 +1,247 @@
+// SceneService: the JSON views (docs/protocol.md): scene summary, cell index, one building,
+// the edit history and the event stream's hello.
+#include "hexlod/server/scene_service.h"
+
+#include "hexlod/grammar/extruded_set_codec.h"
+#include "hexlod/grammar/terminal_set_codec.h"
+#include "hexlod/server/http_types.h"
+
+#include <charconv>
+#include <cstdlib>
+#include <filesystem>
+
+namespace hexlod::server {
+namespace {
+
+using Json = nlohmann::json;
+
+const char* statusName(int status) {
+    return status == 0 ? "applied" : status == 1 ? "undone" : "skipped";
+}
+
+// Parameters are floats: printed as the shortest decimal that reads back to the same float
+// (3.8, not 3.799999952316284), which an edit then turns into that very float again.
+double decimal(float value) {
+    char text[32];
+    const auto result = std::to_chars(text, text + sizeof(text), value);
+    return std::strtod(std::string(text, result.ptr).c_str(), nullptr);
+}
+
+Json parameterJson(const grammar::ParameterInfo& p) {
+    return {{"name", p.name},
+            {"default", decimal(p.defaultValue)},
+            {"min", decimal(p.minValue)},
+            {"max", decimal(p.maxValue)}};
+}
+
+Json shapeJson(uint32_t index, const grammar::ShapeInfo& s) {
+    return {{"id", index},
+            {"name", s.name},
+            {"width", decimal(s.width)},
+            {"height", decimal(s.height)},
+            {"depth", decimal(s.depth)},
+            {"depth_ratio", decimal(s.depthRatio)},
+            {"triangles", s.triangles}};
+}
+
+} // namespace
+
+Json SceneService::staticSummary() const {
+    const cells::BatchCatalog& catalog = *catalog_;
+    const scene::BuiltScene& scene = catalog.scene();
+    const cells::CellIndex& index = catalog.index();
+    Json grammars = Json::array();
+    for (uint32_t g = 0; g < index.grammarCount(); ++g) {
+        const scene::GrammarBuildings& gb = catalog.grammar(g);
+        Json params = Json::array(), shapes = Json::array();
+        for (const grammar::ParameterInfo& p : gb.grammar.params) params.push_back(parameterJson(p));
+        for (uint32_t s = 0; s < gb.grammar.shapes.size(); ++s)
+            shapes.push_back(shapeJson(s, gb.grammar.shapes[s]));
+        size_t batches = 0;
+        for (const cells::Batch& b : index.batches()) batches += b.grammar == g;
+        grammars.push_back({{"index", g},
+                            {"name", gb.name},
+                            {"label", std::filesystem::path(gb.name).stem().string()},
+                            {"kind", index.isTreeGrammar(g) ? "tree" : "building"},
+                            {"members", gb.buildings.size()},
+                            {"batches", batches},
+                            {"content_hash", cache::hexDigest(gb.grammar.contentHash)},
+                            {"parameters", params},
+                            {"shapes", shapes}});
+    }
+    const scene::LodProfile& lod = scene.config.lod;
+    return {
+        {"name", scene.config.name},
+        {"seed", scene.config.seed},
+        {"cell_size", scene.config.cellSize},
+        {"grid",
+         {{"orientation", "pointy-top"},
+          {"coordinates", "axial (q, r)"},
+          {"size", scene.config.cellSize},
+          {"origin", {0.0, 0.0}}}},
+        {"coordinates",
+         "world metres, x east, y north, z up; content positions are relative to their cell's origin"},
+        {"counts",
+         {{"buildings", index.buildingCount()},
+          {"trees", index.treeCount()},
+          {"cells", index.cells().size()},
+          {"batches", catalog.batchCount()}}},
+        {"grammars", grammars},
+        {"lod",
+         {{"max_screen_space_error", lod.maxScreenSpaceError},
+          {"hysteresis", lod.hysteresis},
+          {"geometric_error", lod.geometricError},
+          {"policy",
+           "per cell: sse = geometric_error[1] * viewport_height / (distance * 2 * tan(fov_y / 2)), "
+           "distance from the camera to the cell's bounds box; a cell switches to terminal sets above "
+           "max_screen_space_error * (1 + hysteresis) and back to its extruded set below "
+           "max_screen_space_error * (1 - hysteresis)"}}},
+        {"attributions", scene.attributions},
+        {"formats",
+         {{"terminal_set", grammar::kTerminalSetFormatVersion},
+          {"extruded_set", grammar::kExtrudedSetFormatVersion}}},
+        {"capabilities",
+         {{"terminal_sets", true},
+          {"extruded_sets", true},
+          {"terminal_meshes", false},
+          {"impostors", false},
+          {"edits", true},
+          {"undo", true},
+          {"events", true},
+          {"edit_auth", options_.editsNeedToken ? "bearer" : "none"}}},
+        {"endpoints",
+         {{"cells", "/api/v1/cells"},
+          {"terminal_set", "/api/v1/terminal-sets/{q},{r}/{grammar}/{key}"},
+          {"extruded_set", "/api/v1/extruded-sets/{q},{r}/{grammar}/{key}"},
+          {"building", "/api/v1/buildings/{id}"},
+          {"edits", "/api/v1/edits"},
+          {"undo", "/api/v1/edits/undo"},
+          {"events", "/api/v1/events"},
+          {"metrics", "/metrics"},
+          {"health", "/healthz"}}},
+    };
+}
+
+Json SceneService::summary() const {
+    Json out = staticSummary_;
+    out["notes"] = notes_;
+    {
+        std::shared_lock lock(catalogMutex_);
+        size_t edits = 0, undos = 0;
+        for (const HistoryRecord& r : history_) ++(r.entry.op == JournalEntry::Op::Edit ? edits : undos);
+        out["journal"] = {{"entries", history_.size()},
+                          {"edits", edits},
+                          {"undos", undos},
+                          {"undo_available", !undoStack_.empty()}};
+    }
+    out["edits"] = out["journal"]["entries"];
+    out["index_etag"] = stateEtag();
+    out["seq"] = lastSeq();
+    return out;
+}
+
+std::string SceneService::buildIndex() const {
+    const cells::BatchCatalog& catalog = *catalog_;
+    const cells::CellIndex& index = catalog.index();
+    Json cellList = Json::array();
+    for (const cells::CellBounds& cell : index.cells()) {
+        const glm::dvec3 origin = catalog.cellOrigin(cell.cell);
+        Json batches = Json::array();
+        size_t buildings = 0, trees = 0;
+        for (const cells::Batch& b : index.batchesOf(cell.cell)) {
+            const uint32_t id = static_cast<uint32_t>(&b - index.batches().data());
+            const BatchState& state = state_[id];
+            (index.isTreeGrammar(b.grammar) ? trees : buildings) += b.buildings.size();
+            batches.push_back({{"grammar", b.grammar},
+                               {"members", b.buildings.size()},
+                               {"key", state.key.hex()},
+                               {"version", state.version},
+                               {"terminal_set", contentUrl(PayloadKind::TerminalSet, id, state.key)},
+                               {"extruded_set", contentUrl(PayloadKind::ExtrudedSet, id, state.key)}});
+        }
+        cellList.push_back(
+            {{"q", cell.cell.q},
+             {"r", cell.cell.r},
+             {"origin", {origin.x, origin.y, origin.z}},
+             {"bounds",
+              {{"min", {cell.lo.x, cell.lo.y, cell.zMin}}, {"max", {cell.hi.x, cell.hi.y, cell.zMax}}}},
+             {"buildings", buildings},
+             {"trees", trees},
+             {"batches", batches}});
+    }
+    return jsonText(
+        Json{{"seq", lastSeq_}, {"cell_size", catalog.scene().config.cellSize}, {"cells", cellList}});
+}
+
+SceneService::IndexView SceneService::cellIndex() {
+    std::lock_guard build(indexMutex_);
+    std::shared_lock lock(stateMutex_);
+    if (!indexJson_ || indexBuiltFor_ != lastSeq_) {
+        indexJson_ = std::make_shared<const std::string>(buildIndex());
+        indexBuiltFor_ = lastSeq_;
+    }
+    return {indexJson_, "W/\"" + std::to_string(lastSeq_) + "-" + cache::hexDigest(stateDigest_) + "\""};
+}
+
+std::optional<Json> SceneService::building(uint32_t id) const {
+    if (id >= buildingRefs_.size()) return std::nullopt;
+    const cells::BuildingRef ref = buildingRefs_[id];
+    std::shared_lock lock(catalogMutex_);
+    const cells::BatchCatalog& catalog = *catalog_;
+    const scene::GrammarBuildings& gb = catalog.grammar(ref.grammar);
+    const grammar::BuildingInput& input = gb.buildings[ref.building];
+    const std::vector<float> values =
+        input.parameters.empty() ? gb.grammar.defaultParameters() : input.parameters;
+    Json params = Json::object();
+    for (size_t p = 0; p < gb.grammar.params.size() && p < values.size(); ++p)
+        params[gb.grammar.params[p].name] = decimal(values[p]);
+    const cells::HexCoord cell = catalog.index().cellOfBuilding(ref.grammar, ref.building);
+    const uint32_t batch = *findBatch(cell, ref.grammar);
+    const BatchState state = batchState(batch);
+    const scene::BuildingOrigin origin = catalog.scene().buildingOrigins[id];
+    return Json{{"id", id},
+                {"grammar", ref.grammar},
+                {"grammar_name", gb.name},
+                {"cell", {cell.q, cell.r}},
+                {"source", {{"index", origin.source}, {"id", origin.sourceId}}},
+                {"base_elevation", input.baseElevation},
+                {"footprint_vertices", input.footprint.size()},
+                {"params", params},
+                {"batch",
+                 {{"key", state.key.hex()},
+                  {"version", state.version},
+                  {"terminal_set", contentUrl(PayloadKind::TerminalSet, batch, state.key)},
+                  {"extruded_set", contentUrl(PayloadKind::ExtrudedSet, batch, state.key)}}}};
+}
+
+Json SceneService::history(uint64_t since, size_t limit) const {
+    std::shared_lock lock(catalogMutex_);
+    Json entries = Json::array();
+    for (const HistoryRecord& r : history_) {
+        if (r.entry.seq <= since) continue;
+        if (entries.size() >= limit) break;
+        Json e = {{"seq", r.entry.seq},
+                  {"op", r.entry.op == JournalEntry::Op::Edit ? "edit" : "undo"},
+                  {"time", r.entry.time},
+                  {"status", statusName(static_cast<int>(r.status))},
+                  {"changed_batches", r.changed}};
+        if (r.entry.op == JournalEntry::Op::Edit) {
+            e["selector"] = r.entry.selector;
+            e["params"] = r.entry.params;
+            if (!r.entry.comment.empty()) e["comment"] = r.entry.comment;
+        } else {
+            e["undoes"] = r.entry.undoes;
+        }
+        if (!r.reason.empty()) e["reason"] = r.reason;
+        if (r.undoneBy) e["undone_by"] = r.undoneBy;
+        entries.push_back(std::move(e));
+    }
+    const Json next = undoStack_.empty() ? Json(nullptr) : Json(history_[undoStack_.back()].entry.seq);
+    return {{"entries", entries}, {"total", history_.size()}, {"undo_next", next}};
+}
+
+Json SceneService::hello() const {
+    return {{"seq", lastSeq()}, {"index_etag", stateEtag()}};
+}
+
+} // namespace hexlod::server

@@ -1,0 +1,131 @@
+// Content generation on demand: one expansion per missing batch however many ask at once,
+// one expansion for a batch's terminal and extruded sets together, and the bounded queue.
+#include "live_server.h"
+
+#include "hexlod/server/generation_pool.h"
+
+#include <gtest/gtest.h>
+
+#include <barrier>
+#include <future>
+#include <thread>
+
+namespace hexlod::test {
+namespace {
+
+using Json = nlohmann::json;
+
+std::vector<Json> buildingBatches(const LiveServer& live) {
+    std::vector<Json> out;
+    const Json index = live.getJson("/api/v1/cells");
+    for (const Json& cell : index["cells"])
+        for (const Json& batch : cell["batches"])
+            if (batch["grammar"].get<int>() < 2) out.push_back(batch);
+    return out;
+}
+
+TEST(Generation, ABurstForOneMissingBatchGeneratesItOnce) {
+    LiveServer live;
+    const Json batch = buildingBatches(live).front();
+    constexpr int kClients = 24;
+    std::barrier start(kClients);
+    std::vector<std::string> bodies(kClients);
+    std::vector<int> statuses(kClients);
+    std::vector<std::thread> clients;
+    for (int i = 0; i < kClients; ++i)
+        clients.emplace_back([&, i] {
+            http_client::Connection connection("127.0.0.1", live.port());
+            start.arrive_and_wait();
+            const auto response = connection.get(batch["terminal_set"]);
+            statuses[i] = response.status;
+            bodies[i] = response.body;
+        });
+    for (std::thread& t : clients) t.join();
+    for (int i = 0; i < kClients; ++i) {
+        EXPECT_EQ(statuses[i], 200);
+        EXPECT_EQ(bodies[i], bodies[0]);
+    }
+    EXPECT_EQ(live.service().expansions(), 1u);
+    const std::string metrics = live.get("/metrics").body;
+    EXPECT_NE(metrics.find("hexlod_generations_total{kind=\"terminal_set\"} 1\n"), std::string::npos)
+        << metrics;
+    // The same expansion made the extruded set: fetching it expands nothing.
+    EXPECT_EQ(live.get(batch["extruded_set"]).status, 200);
+    EXPECT_EQ(live.service().expansions(), 1u);
+}
+
+TEST(Generation, AnExtrudedSetFirstThenItsTerminalSetCostsOneExpansion) {
+    LiveServer live;
+    const Json batch = buildingBatches(live).back();
+    EXPECT_EQ(live.get(batch["extruded_set"]).status, 200);
+    EXPECT_EQ(live.service().expansions(), 1u);
+    EXPECT_EQ(live.get(batch["terminal_set"]).status, 200); // decoded tier hit: encoded only
+    EXPECT_EQ(live.service().expansions(), 1u);
+    const std::string metrics = live.get("/metrics").body;
+    EXPECT_NE(metrics.find("hexlod_generations_total{kind=\"terminal_set_encode\"} 1\n"), std::string::npos);
+    EXPECT_NE(metrics.find("hexlod_cache_hits_total{tier=\"decoded\"} 1\n"), std::string::npos);
+}
+
+TEST(Generation, EveryBatchOfTheSceneServesBothPayloads) {
+    LiveServer live;
+    const Json index = live.getJson("/api/v1/cells");
+    for (const Json& cell : index["cells"])
+        for (const Json& batch : cell["batches"]) {
+            EXPECT_EQ(live.get(batch["terminal_set"]).status, 200) << batch.dump();
+            EXPECT_EQ(live.get(batch["extruded_set"]).status, 200) << batch.dump();
+        }
+}
+
+TEST(GenerationPool, DeduplicatesBoundsItsQueueAndAnswersEveryWaiter) {
+    server::GenerationPool pool(1, 1);
+    std::promise<void> release;
+    std::shared_future<void> released = release.get_future().share();
+    std::promise<void> runningA;
+    std::atomic<int> runsOfA{0}, doneA{0}, doneB{0};
+    const auto workA = [&] {
+        ++runsOfA;
+        runningA.set_value();
+        released.wait();
+        return server::PayloadOutcome{std::make_shared<const std::vector<uint8_t>>(3, 7), 200, {}, {}};
+    };
+    using Admission = server::GenerationPool::Admission;
+    EXPECT_EQ(pool.submit(1, workA, [&](const server::PayloadOutcome& o) { doneA += o.status == 200; }),
+              Admission::Started);
+    runningA.get_future().wait(); // A holds the only worker
+    EXPECT_EQ(pool.submit(1, workA, [&](const server::PayloadOutcome& o) { doneA += o.bytes->size() == 3; }),
+              Admission::Joined);
+    const auto workB = [] { return server::PayloadOutcome{nullptr, 500, "b", {}}; };
+    EXPECT_EQ(pool.submit(2, workB, [&](const server::PayloadOutcome& o) { doneB += o.status == 503; }),
+              Admission::Started);
+    EXPECT_EQ(pool.submit(3, workB, [](const server::PayloadOutcome&) { FAIL() << "rejected work ran"; }),
+              Admission::Rejected);
+    EXPECT_EQ(pool.stats().queued, 1u);
+    // stop() cancels the queued B at once, then waits for the running A, released meanwhile.
+    std::thread releaser([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        release.set_value();
+    });
+    pool.stop();
+    releaser.join();
+    EXPECT_EQ(runsOfA.load(), 1);
+    EXPECT_EQ(doneA.load(), 2);
+    const server::GenerationPoolStats stats = pool.stats();
+    EXPECT_EQ(stats.started, 2u);
+    EXPECT_EQ(stats.joined, 1u);
+    EXPECT_EQ(stats.rejected, 1u);
+    EXPECT_EQ(doneB.load(), 1); // cancelled with 503, never run
+}
+
+TEST(GenerationPool, AThrowingJobBecomesA500ForEveryWaiter) {
+    server::GenerationPool pool(2, 8);
+    std::promise<server::PayloadOutcome> result;
+    pool.submit(
+        9, []() -> server::PayloadOutcome { throw std::runtime_error("boom"); },
+        [&](const server::PayloadOutcome& o) { result.set_value(o); });
+    const server::PayloadOutcome outcome = result.get_future().get();
+    EXPECT_EQ(outcome.status, 500);
+    EXPECT_NE(outcome.error.find("boom"), std::string::npos);
+}
+
+} // namespace
+} // namespace hexlod::test
