@@ -1,6 +1,7 @@
 #include "city_gltf_export.h"
 
 #include "gltf_binary_stream.h"
+#include "gltf_layout.h"
 
 #include "hexlod/render/base_volume_mesh.h"
 
@@ -22,8 +23,6 @@ using nlohmann::json;
 using render::MeshVertex;
 using render::TerminalMesh;
 
-constexpr int kFloat = 5126, kUnsignedByte = 5121, kUnsignedInt = 5125;
-constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 constexpr const char* kInstancing = "EXT_mesh_gpu_instancing";
 // Scale floor for a flattened scope axis, so instance matrices stay invertible (metres; far
 // below a millimetre of position).
@@ -74,50 +73,6 @@ private:
         return report_;
     }
 
-    json& addView(uint64_t offset, uint64_t length, uint32_t stride, int target) {
-        json view = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}};
-        if (stride) view["byteStride"] = stride;
-        if (target) view["target"] = target;
-        views_.push_back(view);
-        return views_.back();
-    }
-
-    size_t addAccessor(size_t view, uint64_t offset, int componentType, uint64_t count, const char* type,
-                       bool normalized = false) {
-        json a = {{"bufferView", view},
-                  {"byteOffset", offset},
-                  {"componentType", componentType},
-                  {"count", count},
-                  {"type", type}};
-        if (normalized) a["normalized"] = true;
-        accessors_.push_back(a);
-        return accessors_.size() - 1;
-    }
-
-    // A triangle primitive over vertices and indices already in the buffer: attribute
-    // accessors over one interleaved view, POSITION with its exact bounds.
-    json describePrimitive(uint64_t vertexAt, uint64_t vertexCount, uint64_t indexAt, uint64_t indexCount,
-                           const glm::vec3& lo, const glm::vec3& hi) {
-        const size_t vertexView = views_.size();
-        addView(vertexAt, vertexCount * sizeof(MeshVertex), sizeof(MeshVertex), kArrayBuffer);
-        const size_t indexView = views_.size();
-        addView(indexAt, indexCount * 4, 0, kElementArrayBuffer);
-        const size_t position =
-            addAccessor(vertexView, offsetof(MeshVertex, position), kFloat, vertexCount, "VEC3");
-        accessors_[position]["min"] = {lo.x, lo.y, lo.z};
-        accessors_[position]["max"] = {hi.x, hi.y, hi.z};
-        json primitive;
-        primitive["attributes"] = {
-            {"POSITION", position},
-            {"NORMAL", addAccessor(vertexView, offsetof(MeshVertex, normal), kFloat, vertexCount, "VEC3")},
-            {"TEXCOORD_0", addAccessor(vertexView, offsetof(MeshVertex, uv), kFloat, vertexCount, "VEC2")},
-            {"COLOR_0",
-             addAccessor(vertexView, offsetof(MeshVertex, rgba), kUnsignedByte, vertexCount, "VEC4", true)}};
-        primitive["indices"] = addAccessor(indexView, 0, kUnsignedInt, indexCount, "SCALAR");
-        primitive["material"] = 0;
-        return primitive;
-    }
-
     static void grow(glm::vec3& lo, glm::vec3& hi, const std::vector<MeshVertex>& vertices) {
         for (const MeshVertex& v : vertices) lo = glm::min(lo, v.position), hi = glm::max(hi, v.position);
     }
@@ -129,7 +84,7 @@ private:
         grow(lo, hi, vertices);
         const uint64_t vertexAt = stream_.append(vertices.data(), vertices.size() * sizeof(MeshVertex));
         const uint64_t indexAt = stream_.append(indices.data(), indices.size() * 4);
-        return describePrimitive(vertexAt, vertices.size(), indexAt, indices.size(), lo, hi);
+        return layout_.describePrimitive(vertexAt, vertices.size(), indexAt, indices.size(), lo, hi);
     }
 
     // The terminal mesh as a glTF mesh, written on first use: normals turned into those of the
@@ -186,7 +141,7 @@ private:
             const uint64_t at = stream_.append(indices.data(), indices.size() * 4);
             if (first == 0) indexAt = at;
         }
-        return describePrimitive(vertexAt, vertexCount, indexAt, indexCount, lo, hi);
+        return layout_.describePrimitive(vertexAt, vertexCount, indexAt, indexCount, lo, hi);
     }
 
     void instancingNode(json& children, const TerminalMesh& mesh, const std::string& name,
@@ -204,11 +159,10 @@ private:
             std::copy_n(&s.x, 3, &data[7 * n + 3 * i]);
         }
         const uint64_t at = stream_.append(data.data(), data.size() * sizeof(float));
-        const size_t view = views_.size();
-        addView(at, data.size() * sizeof(float), 0, 0);
-        const json attributes = {{"TRANSLATION", addAccessor(view, 0, kFloat, n, "VEC3")},
-                                 {"ROTATION", addAccessor(view, 12 * n, kFloat, n, "VEC4")},
-                                 {"SCALE", addAccessor(view, 28 * n, kFloat, n, "VEC3")}};
+        const size_t view = layout_.addView(at, data.size() * sizeof(float), 0, 0);
+        const json attributes = {{"TRANSLATION", layout_.addAccessor(view, 0, kGltfFloat, n, "VEC3")},
+                                 {"ROTATION", layout_.addAccessor(view, 12 * n, kGltfFloat, n, "VEC4")},
+                                 {"SCALE", layout_.addAccessor(view, 28 * n, kGltfFloat, n, "VEC3")}};
         nodes_.push_back({{"name", name},
                           {"mesh", meshIndex},
                           {"extensions", {{kInstancing, {{"attributes", attributes}}}}}});
@@ -309,12 +263,9 @@ private:
             {"scenes", {{{"nodes", {0}}}}},
             {"nodes", nodes_},
             {"meshes", meshes_},
-            {"materials",
-             {{{"name", "vertex colour"},
-               {"pbrMetallicRoughness",
-                {{"baseColorFactor", {1, 1, 1, 1}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.9}}}}}},
-            {"accessors", accessors_},
-            {"bufferViews", views_},
+            {"materials", {vertexColourMaterial()}},
+            {"accessors", layout_.accessors()},
+            {"bufferViews", layout_.views()},
             {"buffers", {buffer}},
         };
         if (!options_.flatten && report_.terminalMeshes > 0) {
@@ -338,7 +289,8 @@ private:
     const CityExportOptions& options_;
     GltfBinaryStream stream_;
     CityExportReport report_;
-    json nodes_ = json::array(), meshes_ = json::array(), accessors_ = json::array(), views_ = json::array();
+    GltfLayout layout_;
+    json nodes_ = json::array(), meshes_ = json::array();
     std::unordered_map<const TerminalMesh*, size_t> meshIndex_;
     std::set<const TerminalMesh*> used_;
 };

@@ -47,31 +47,21 @@ int openCity(const std::string& command, const std::string& scenePath, CitySessi
         std::cerr << "hexlod " << command << ": cache.disk_path: " << e.what() << "\n";
         return 2;
     }
-    std::vector<const grammar::CompiledGrammar*> grammars;
-    for (uint32_t g = 0; g < out.catalog->index().grammarCount(); ++g)
-        grammars.push_back(&out.catalog->grammar(g).grammar);
-    std::vector<render::GltfShapeSource> sources;
-    for (const scene::ShapeSource& s : out.config.shapes) sources.push_back({s.shape, s.gltf});
-    out.meshes = std::make_unique<render::TerminalMeshLibrary>(grammars, sources);
+    out.meshes = sceneMeshLibrary(*out.catalog);
     for (const std::string& note : out.meshes->notes()) out.notes.push_back("meshes: " + note);
     return 0;
 }
 
-int openRenderer(const std::string& command, const RenderSetup& setup, CitySession& session) {
-    render::GlContextResult gl = render::createGlContext({setup.backend, true});
-    if (!gl.context) {
-        std::cerr << "hexlod " << command << ": " << gl.error() << "\n";
-        return 1;
-    }
-    session.gl = std::move(gl.context);
-    const render::GlContextInfo& info = session.gl->info();
-    session.notes.push_back(std::string("gl: ") + render::glBackendName(info.backend) + ", " + info.renderer +
-                            ", " + info.version +
-                            (info.software ? " (software: frame times are not GPU figures)" : ""));
-    if (!setup.impostors) {
-        session.notes.push_back("impostors: off (every terminal draws at LOD4)");
-        return 0;
-    }
+std::unique_ptr<render::TerminalMeshLibrary> sceneMeshLibrary(const cells::BatchCatalog& catalog) {
+    std::vector<const grammar::CompiledGrammar*> grammars;
+    for (uint32_t g = 0; g < catalog.index().grammarCount(); ++g)
+        grammars.push_back(&catalog.grammar(g).grammar);
+    std::vector<render::GltfShapeSource> sources;
+    for (const scene::ShapeSource& s : catalog.scene().config.shapes) sources.push_back({s.shape, s.gltf});
+    return std::make_unique<render::TerminalMeshLibrary>(grammars, sources);
+}
+
+lod::SceneImpostorOptions sceneImpostorOptions(const RenderSetup& setup) {
     lod::SceneImpostorOptions options;
     options.facadeLayout = {impostor::ViewSphere::Hemisphere, setup.impostorGrid, setup.impostorResolution,
                             2};
@@ -87,16 +77,42 @@ int openRenderer(const std::string& command, const RenderSetup& setup, CitySessi
             if (done == total) std::fputc('\n', stderr);
         };
     }
+    return options;
+}
+
+void appendImpostorNotes(const lod::SceneImpostorReport& report, std::vector<std::string>& notes) {
+    notes.push_back(report.summary());
+    for (const lod::BakedShapeReport& shape : report.shapes) {
+        if (!shape.note.empty()) notes.push_back("impostors: " + shape.name + ": " + shape.note);
+    }
+}
+
+std::string glContextNote(const render::GlContext& gl) {
+    const render::GlContextInfo& info = gl.info();
+    return std::string("gl: ") + render::glBackendName(info.backend) + ", " + info.renderer + ", " +
+           info.version + (info.software ? " (software: frame times are not GPU figures)" : "");
+}
+
+int openRenderer(const std::string& command, const RenderSetup& setup, CitySession& session) {
+    render::GlContextResult gl = render::createGlContext({setup.backend, true});
+    if (!gl.context) {
+        std::cerr << "hexlod " << command << ": " << gl.error() << "\n";
+        return 1;
+    }
+    session.gl = std::move(gl.context);
+    session.notes.push_back(glContextNote(*session.gl));
+    if (!setup.impostors) {
+        session.notes.push_back("impostors: off (every terminal draws at LOD4)");
+        return 0;
+    }
+    const lod::SceneImpostorOptions options = sceneImpostorOptions(setup);
     std::string error;
     if (!lod::bakeSceneImpostors(session.catalog->scene(), *session.meshes, options, session.impostors,
                                  session.impostorReport, error)) {
         std::cerr << "hexlod " << command << ": impostors: " << error << "\n";
         return 1;
     }
-    session.notes.push_back(session.impostorReport.summary());
-    for (const lod::BakedShapeReport& shape : session.impostorReport.shapes) {
-        if (!shape.note.empty()) session.notes.push_back("impostors: " + shape.name + ": " + shape.note);
-    }
+    appendImpostorNotes(session.impostorReport, session.notes);
     return 0;
 }
 

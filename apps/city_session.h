@@ -43,6 +43,16 @@ struct RenderSetup {
 // Creates the GL context and bakes (or loads) the impostors the scene uses. Same contract.
 int openRenderer(const std::string& command, const RenderSetup& setup, CitySession& session);
 
+// The scene's terminal meshes: a mesh per declared shape of every grammar, glTF where the
+// config maps a shape to a file.
+std::unique_ptr<render::TerminalMeshLibrary> sceneMeshLibrary(const cells::BatchCatalog& catalog);
+// The impostor layouts and store of a setup.
+lod::SceneImpostorOptions sceneImpostorOptions(const RenderSetup& setup);
+// The report's summary line and a line per shape with a note.
+void appendImpostorNotes(const lod::SceneImpostorReport& report, std::vector<std::string>& notes);
+// "gl: <backend>, <renderer>, <version>[ (software: ...)]".
+std::string glContextNote(const render::GlContext& gl);
+
 // Peak resident set of the process (VmHWM); 0 where /proc is missing.
 uint64_t peakRssBytes();
 

@@ -1,24 +1,13 @@
 #include "gltf_binary_stream.h"
 
+#include "gltf_layout.h"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <vector>
 
 namespace hexlod::apps {
-namespace {
-
-void writeU32(std::ostream& out, uint32_t v) {
-    const char bytes[4] = {char(v & 0xff), char((v >> 8) & 0xff), char((v >> 16) & 0xff), char(v >> 24)};
-    out.write(bytes, 4);
-}
-
-uint64_t padded(uint64_t n) {
-    return (n + 3) & ~uint64_t(3);
-}
-
-} // namespace
-
 GltfBinaryStream::GltfBinaryStream(std::string output, uint64_t limit)
     : output_(std::move(output)), binTemp_(output_ + ".bin.partial"), outTemp_(output_ + ".partial"),
       limit_(limit) {
@@ -44,7 +33,7 @@ bool GltfBinaryStream::refuse(const std::string& message) {
 
 bool GltfBinaryStream::reserve(uint64_t bytes) {
     if (!ok()) return false;
-    if (padded(size_) + bytes > limit_) {
+    if (gltfPadded(size_) + bytes > limit_) {
         return refuse("the export would pass its limit of " + std::to_string(limit_) + " bytes (" +
                       std::to_string(size_) +
                       " written so far; a .glb holds at most 4 GiB): export fewer "
@@ -56,8 +45,8 @@ bool GltfBinaryStream::reserve(uint64_t bytes) {
 uint64_t GltfBinaryStream::append(const void* data, uint64_t bytes) {
     if (!reserve(bytes)) return size_;
     static const char zeros[4] = {};
-    bin_.write(zeros, std::streamsize(padded(size_) - size_));
-    size_ = padded(size_);
+    bin_.write(zeros, std::streamsize(gltfPadded(size_) - size_));
+    size_ = gltfPadded(size_);
     const uint64_t at = size_;
     bin_.write(static_cast<const char*>(data), std::streamsize(bytes));
     size_ += bytes;
@@ -67,8 +56,8 @@ uint64_t GltfBinaryStream::append(const void* data, uint64_t bytes) {
 
 bool GltfBinaryStream::finishGlb(const std::string& json) {
     if (!ok()) return false;
-    const uint64_t jsonBytes = padded(json.size()), binBytes = padded(size_);
-    const uint64_t total = 12 + 8 + jsonBytes + (size_ ? 8 + binBytes : 0);
+    const uint64_t binBytes = gltfPadded(size_);
+    const uint64_t total = 12 + 8 + gltfPadded(json.size()) + (size_ ? 8 + binBytes : 0);
     if (total > kGlbMaxBytes)
         return refuse("the .glb would be " + std::to_string(total) + " bytes, past its 4 GiB limit");
     static const char zeros[4] = {};
@@ -77,15 +66,8 @@ bool GltfBinaryStream::finishGlb(const std::string& json) {
     if (!bin_) return refuse("cannot write " + binTemp_);
     {
         std::ofstream out(outTemp_, std::ios::binary | std::ios::trunc);
-        out.write("glTF", 4);
-        writeU32(out, 2);
-        writeU32(out, uint32_t(total));
-        writeU32(out, uint32_t(jsonBytes));
-        writeU32(out, 0x4E4F534A); // "JSON"
-        out << json << std::string(jsonBytes - json.size(), ' ');
+        writeGlbPrologue(out, json, size_);
         if (size_) {
-            writeU32(out, uint32_t(binBytes));
-            writeU32(out, 0x004E4942); // "BIN\0"
             std::ifstream in(binTemp_, std::ios::binary);
             std::vector<char> block(size_t(1) << 20);
             while (in.read(block.data(), std::streamsize(block.size())) || in.gcount() > 0)

@@ -1,5 +1,7 @@
 #include "serve_command.h"
 
+#include "serve_shape_assets.h"
+
 #include "hexlod/scene/scene_builder.h"
 #include "hexlod/server/edit_journal.h"
 #include "hexlod/server/server.h"
@@ -7,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <unistd.h>
 
 namespace hexlod::apps {
 
@@ -40,6 +43,19 @@ CLI::App* registerServeCommand(CLI::App& app, ServeOptions& o) {
                     "Requests per second per client address (burst: twice that); 0: off")
         ->check(CLI::Range(0.0, 1e9))
         ->capture_default_str();
+    cmd->add_flag("!--no-impostors", o.impostors,
+                  "Serve terminal meshes only: no GL context, no impostor bake");
+    cmd->add_option("--gl", o.render.backend,
+                    "GL backend for the impostor bake: auto, egl-device, egl-surfaceless, osmesa")
+        ->capture_default_str();
+    cmd->add_option("--impostor-grid", o.render.impostorGrid, "Impostor views per side (2 to 32)")
+        ->capture_default_str();
+    cmd->add_option("--impostor-res", o.render.impostorResolution,
+                    "Texels per impostor view side (16 to 1024)")
+        ->capture_default_str();
+    cmd->add_option("--impostor-store", o.render.impostorStore,
+                    "Folder of baked impostors (EXR, shared with hexlod bake); empty: bake in memory")
+        ->capture_default_str();
     return cmd;
 }
 
@@ -60,6 +76,13 @@ int runServeCommand(ServeOptions o) {
         std::cerr << "hexlod serve: " << error << "\n";
         return 2;
     }
+    ServeAssetSetup assetSetup;
+    if (!makeRenderSetup(o.render, assetSetup.render, error)) {
+        std::cerr << "hexlod serve: " << error << "\n";
+        return 2;
+    }
+    assetSetup.render.impostors = o.impostors;
+    assetSetup.render.progress = isatty(STDERR_FILENO) != 0; // a bar in a terminal, not in a log file
 
     scene::SceneConfig config;
     if (!scene::loadSceneConfig(o.scenePath, config, error)) {
@@ -99,6 +122,11 @@ int runServeCommand(ServeOptions o) {
         std::cerr << "hexlod serve: " << error << "\n";
         return 1;
     }
+
+    server::ShapeAssets assets = service->withCatalog(
+        [&](const cells::BatchCatalog& catalog) { return buildShapeAssets(catalog, assetSetup); });
+    for (const std::string& line : assets.notes) std::cerr << "hexlod serve: " << line << "\n";
+    service->attachShapeAssets(std::move(assets));
 
     server::Server httpServer(*service, serverOptions);
     if (!httpServer.start(error)) {

@@ -2,6 +2,8 @@
 // replays its edit journal, serves the HTTP API and the web viewer until SIGINT or SIGTERM.
 #pragma once
 
+#include "render_options.h"
+
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
@@ -22,6 +24,9 @@ struct ServeOptions {
     uint32_t payloadCacheMb = 512;
     uint32_t cacheMb = 0; // decoded terminal sets; 0: the scene's cache.memory_mb
     double rateLimit = 1000.0;
+    // Shape assets (serve_shape_assets.h); the store is shared with `hexlod bake`.
+    bool impostors = true;
+    RenderOptions render{.impostorStore = "out/impostors"};
 };
 
 CLI::App* registerServeCommand(CLI::App& app, ServeOptions& options);

@@ -42,12 +42,16 @@ std::string speciesName(const scene::BuiltScene& scene, const scene::GrammarBuil
 } // namespace
 
 std::string SceneImpostorReport::summary() const {
-    size_t made = 0;
-    for (const BakedShapeReport& shape : shapes) made += shape.shape >= 0;
+    size_t made = 0, loaded = 0;
+    for (const BakedShapeReport& shape : shapes) {
+        made += shape.shape >= 0;
+        loaded += shape.shape >= 0 && shape.outcome == BakeOutcome::Loaded;
+    }
     std::ostringstream text;
     text << "impostors: " << made << " of " << declaredShapes
-         << " declared shapes baked (used by this scene)";
-    if (treeSpecies > 0) text << ", " << treeSpecies << " tree species";
+         << " declared shapes (used by this scene): " << made - loaded << " baked, " << loaded
+         << " loaded from the store";
+    if (treeSpecies > 0) text << "; " << treeSpecies << " tree species";
     return text.str();
 }
 
@@ -128,6 +132,7 @@ bool bakeSceneImpostors(const scene::BuiltScene& scene, const render::TerminalMe
     for (uint32_t g = uint32_t(buildingGrammars); g < grammarCount; ++g) {
         const scene::GrammarBuildings& trees = grammarAt(g);
         report.skippedUnused += uint32_t(trees.grammar.shapes.size());
+        if (!options.treeSpecies) continue;
         std::map<std::vector<float>, size_t> seen;
         for (const grammar::BuildingInput& tree : trees.buildings) {
             if (!seen.emplace(tree.parameters, seen.size()).second) continue;

@@ -19,20 +19,53 @@ float linearToSrgb(float linear) {
     return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
 }
 
-bool writePng(const std::string& path, const Image& image, std::string& error) {
-    if (image.empty() || (image.channels != 4 && image.channels != 1)) {
-        error = path + ": only non-empty RGBA or single-channel images can be written as PNG";
-        return false;
-    }
-    std::vector<unsigned char> bytes(image.pixels.size());
+namespace {
+
+// The 8-bit samples of a PNG; false when the image cannot be one.
+bool pngSamples(const Image& image, PngTransfer transfer, std::vector<unsigned char>& bytes) {
+    if (image.empty() || (image.channels != 4 && image.channels != 1)) return false;
+    bytes.resize(image.pixels.size());
     for (size_t i = 0; i < image.pixels.size(); ++i) {
-        bool colour = image.channels == 4 && i % 4 != 3;
-        float value = colour ? linearToSrgb(image.pixels[i]) : std::clamp(image.pixels[i], 0.0f, 1.0f);
+        const bool colour = transfer == PngTransfer::Srgb && image.channels == 4 && i % 4 != 3;
+        const float value = colour ? linearToSrgb(image.pixels[i]) : std::clamp(image.pixels[i], 0.0f, 1.0f);
         bytes[i] = static_cast<unsigned char>(std::lround(value * 255.0f));
+    }
+    return true;
+}
+
+const char* kPngShapes = "only non-empty RGBA or single-channel images can be written as PNG";
+
+void appendToVector(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<uint8_t>*>(context);
+    out->insert(out->end(), static_cast<const uint8_t*>(data), static_cast<const uint8_t*>(data) + size);
+}
+
+} // namespace
+
+bool writePng(const std::string& path, const Image& image, std::string& error, PngTransfer transfer) {
+    std::vector<unsigned char> bytes;
+    if (!pngSamples(image, transfer, bytes)) {
+        error = path + ": " + kPngShapes;
+        return false;
     }
     if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), int(image.channels), bytes.data(),
                         int(image.width * image.channels))) {
         error = path + ": cannot write the PNG file";
+        return false;
+    }
+    return true;
+}
+
+bool encodePng(const Image& image, PngTransfer transfer, std::vector<uint8_t>& out, std::string& error) {
+    std::vector<unsigned char> bytes;
+    if (!pngSamples(image, transfer, bytes)) {
+        error = kPngShapes;
+        return false;
+    }
+    out.clear();
+    if (!stbi_write_png_to_func(appendToVector, &out, int(image.width), int(image.height),
+                                int(image.channels), bytes.data(), int(image.width * image.channels))) {
+        error = "cannot encode the PNG";
         return false;
     }
     return true;

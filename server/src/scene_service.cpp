@@ -94,9 +94,6 @@ std::unique_ptr<SceneService> SceneService::create(scene::BuiltScene scene, cach
                        "encoded payloads " + mebibytes(s.options_.terminalPayloadBytes) +
                        " (terminal sets) + " + mebibytes(s.options_.extrudedPayloadBytes) +
                        " (extruded sets)");
-    s.notes_.push_back("terminal meshes (glTF): not served by this build (no mesh export in it yet)");
-    s.notes_.push_back(
-        "impostors (EXR, PNG): not served (no GL context and no impostor baking in this build)");
     for (const std::string& line : s.notes_) log.push_back(line);
     return service;
 }

@@ -34,17 +34,63 @@ Json parameterJson(const grammar::ParameterInfo& p) {
             {"max", decimal(p.maxValue)}};
 }
 
-Json shapeJson(uint32_t index, const grammar::ShapeInfo& s) {
-    return {{"id", index},
-            {"name", s.name},
-            {"width", decimal(s.width)},
-            {"height", decimal(s.height)},
-            {"depth", decimal(s.depth)},
-            {"depth_ratio", decimal(s.depthRatio)},
-            {"triangles", s.triangles}};
+Json vec3Json(const std::array<float, 3>& v) {
+    return {decimal(v[0]), decimal(v[1]), decimal(v[2])};
 }
 
 } // namespace
+
+std::string SceneService::meshUrl(uint32_t grammar, uint32_t shape) const {
+    const MeshAsset* mesh = assets_.mesh(grammar, shape);
+    if (!mesh) return {};
+    return "/api/v1/meshes/" + std::to_string(grammar) + "/" + std::to_string(shape) + "/" +
+           cache::hexDigest(mesh->hash) + ".glb";
+}
+
+std::string SceneService::impostorUrl(uint32_t grammar, uint32_t shape, const char* suffix) const {
+    const ImpostorAsset* impostor = assets_.impostor(grammar, shape);
+    if (!impostor) return {};
+    return "/api/v1/impostors/" + std::to_string(grammar) + "/" + std::to_string(shape) + "/" +
+           cache::hexDigest(impostor->key) + suffix;
+}
+
+// A declared shape: its declaration, and the URLs of its mesh and impostor where served.
+Json SceneService::shapeJson(uint32_t grammar, uint32_t shape) const {
+    const grammar::ShapeInfo& s = catalog_->grammar(grammar).grammar.shapes[shape];
+    Json out = {{"id", shape},
+                {"index", shape},
+                {"name", s.name},
+                {"width", decimal(s.width)},
+                {"height", decimal(s.height)},
+                {"depth", decimal(s.depth)},
+                {"depth_ratio", decimal(s.depthRatio)},
+                {"triangles", s.triangles}};
+    const MeshAsset* mesh = assets_.mesh(grammar, shape);
+    out["nominal_size"] =
+        mesh ? vec3Json(mesh->nominalSize)
+             : Json{decimal(s.width), decimal(s.height), decimal(s.depthRatio * std::min(s.width, s.height))};
+    out["mesh_url"] = mesh ? Json(meshUrl(grammar, shape)) : Json(nullptr);
+    const ImpostorAsset* impostor = assets_.impostor(grammar, shape);
+    if (!impostor) {
+        out["impostor"] = nullptr;
+        return out;
+    }
+    out["impostor"] = {{"albedo_url", impostorUrl(grammar, shape, ".albedo.png")},
+                       {"normal_url", impostorUrl(grammar, shape, ".normal.png")},
+                       {"exr_url", impostor->exr ? Json(impostorUrl(grammar, shape, ".exr")) : Json(nullptr)},
+                       {"centre", vec3Json(impostor->centre)},
+                       {"radius", decimal(impostor->radius)},
+                       {"bounds_min", vec3Json(impostor->boundsMin)},
+                       {"bounds_max", vec3Json(impostor->boundsMax)},
+                       {"layer", impostor->layer}};
+    return out;
+}
+
+void SceneService::attachShapeAssets(ShapeAssets assets) {
+    assets_ = std::move(assets);
+    assetsAttached_ = true;
+    staticSummary_ = staticSummary();
+}
 
 Json SceneService::staticSummary() const {
     const cells::BatchCatalog& catalog = *catalog_;
@@ -55,8 +101,7 @@ Json SceneService::staticSummary() const {
         const scene::GrammarBuildings& gb = catalog.grammar(g);
         Json params = Json::array(), shapes = Json::array();
         for (const grammar::ParameterInfo& p : gb.grammar.params) params.push_back(parameterJson(p));
-        for (uint32_t s = 0; s < gb.grammar.shapes.size(); ++s)
-            shapes.push_back(shapeJson(s, gb.grammar.shapes[s]));
+        for (uint32_t s = 0; s < gb.grammar.shapes.size(); ++s) shapes.push_back(shapeJson(g, s));
         size_t batches = 0;
         for (const cells::Batch& b : index.batches()) batches += b.grammar == g;
         grammars.push_back({{"index", g},
@@ -97,14 +142,15 @@ Json SceneService::staticSummary() const {
            "max_screen_space_error * (1 + hysteresis) and back to its extruded set below "
            "max_screen_space_error * (1 - hysteresis)"}}},
         {"attributions", scene.attributions},
+        {"impostor_layout", assets_.impostorLayout},
         {"formats",
          {{"terminal_set", grammar::kTerminalSetFormatVersion},
           {"extruded_set", grammar::kExtrudedSetFormatVersion}}},
         {"capabilities",
          {{"terminal_sets", true},
           {"extruded_sets", true},
-          {"terminal_meshes", false},
-          {"impostors", false},
+          {"terminal_meshes", assets_.meshesServed},
+          {"impostors", assets_.impostorsServed},
           {"edits", true},
           {"undo", true},
           {"events", true},
@@ -114,6 +160,8 @@ Json SceneService::staticSummary() const {
           {"terminal_set", "/api/v1/terminal-sets/{q},{r}/{grammar}/{key}"},
           {"extruded_set", "/api/v1/extruded-sets/{q},{r}/{grammar}/{key}"},
           {"building", "/api/v1/buildings/{id}"},
+          {"terminal_mesh", "/api/v1/meshes/{grammar}/{shape}/{hash}.glb"},
+          {"impostor", "/api/v1/impostors/{grammar}/{shape}/{key}.{albedo.png|normal.png|exr}"},
           {"edits", "/api/v1/edits"},
           {"undo", "/api/v1/edits/undo"},
           {"events", "/api/v1/events"},
@@ -125,6 +173,12 @@ Json SceneService::staticSummary() const {
 Json SceneService::summary() const {
     Json out = staticSummary_;
     out["notes"] = notes_;
+    if (assetsAttached_) {
+        for (const std::string& note : assets_.notes) out["notes"].push_back(note);
+    } else {
+        out["notes"].push_back("terminal meshes (glTF): not served by this service (none attached)");
+        out["notes"].push_back("impostors (EXR, PNG): not served by this service (none attached)");
+    }
     {
         std::shared_lock lock(catalogMutex_);
         size_t edits = 0, undos = 0;

@@ -122,15 +122,10 @@ ServiceApi::ServiceApi(SceneService& service, ApiOptions options)
         reply.set("Cache-Control", "no-store");
         respond(std::move(reply));
     });
-    // Extension points: the terminal-mesh (glTF) and impostor (EXR, PNG) routes belong here
-    // once this build has them. Until then they answer 501, and /api/v1/scene says why.
-    const auto notServed = [](std::string what) {
-        return [what](const RequestContext&, Respond respond) {
-            respond(errorReply(501, what + " are not served by this build (see notes in /api/v1/scene)"));
-        };
-    };
-    r.add("GET", "/api/v1/meshes/{shape}", notServed("terminal meshes (glTF)"));
-    r.add("GET", "/api/v1/impostors/{shape}", notServed("impostors"));
+    r.add("GET", "/api/v1/meshes/{grammar}/{shape}/{file}",
+          [this](const RequestContext& c, Respond respond) { shapeMesh(c, std::move(respond)); });
+    r.add("GET", "/api/v1/impostors/{grammar}/{shape}/{file}",
+          [this](const RequestContext& c, Respond respond) { shapeImpostor(c, std::move(respond)); });
     r.setFallback(
         [this](const RequestContext& c, Respond respond) { respond(static_.serve(c.target, c.request)); });
 }

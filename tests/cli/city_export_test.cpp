@@ -3,10 +3,12 @@
 // millimetre, also 1e7 m from the origin, --flatten keeps the world-space triangles, and
 // over-large exports are refused cleanly.
 #include "city_gltf_export.h"
+#include "shape_mesh_glb.h"
 
 #include "hexlod/render/terminal_mesh_library.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <glm/gtc/quaternion.hpp>
@@ -261,6 +263,63 @@ TEST(CityExport, WritesGltfWithItsBufferBeside) {
     EXPECT_EQ(model.buffers.at(0).uri, "city.bin");
     EXPECT_EQ(report.bytes,
               std::filesystem::file_size(options.output) + std::filesystem::file_size(dir + "/city.bin"));
+}
+
+// The JSON chunk of a .glb (its length at byte 12, its text from byte 20).
+nlohmann::json glbJson(const std::vector<uint8_t>& glb) {
+    uint32_t length = 0;
+    std::memcpy(&length, glb.data() + 12, 4);
+    return nlohmann::json::parse(glb.begin() + 20, glb.begin() + 20 + length);
+}
+
+// A shape's .glb as the service hands it out: every vertex of the library mesh in unit scope
+// space with the unit-space normal, the colour, the triangles, and the nominal size recorded.
+TEST(ShapeMeshGlb, CarriesTheUnitScopeMeshExactly) {
+    const Prepared scene(rowOfBuildings({0.0, 0.0}, 1));
+    for (uint16_t s = 0; s < scene.library.shapeCount(0); ++s) {
+        const render::TerminalMesh& mesh = scene.library.mesh(0, s);
+        const std::vector<uint8_t> glb = shapeMeshGlb(mesh, mesh.shape);
+        ASSERT_EQ(glb.size() % 4, 0u);
+        tinygltf::Model model;
+        tinygltf::TinyGLTF loader;
+        std::string err, warn;
+        ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size())))
+            << err;
+        const nlohmann::json extras = glbJson(glb)["asset"]["extras"]["hexlod"];
+        EXPECT_EQ(extras["nominal_size"][0].get<float>(), mesh.nominalSize.x);
+        ASSERT_EQ(model.meshes.size(), 1u);
+        EXPECT_EQ(model.meshes[0].name, mesh.shape);
+        const tinygltf::Primitive& p = model.meshes[0].primitives.at(0);
+        const std::vector<float> positions = readAccessor<float>(model, p.attributes.at("POSITION"));
+        const std::vector<float> normals = readAccessor<float>(model, p.attributes.at("NORMAL"));
+        const std::vector<uint8_t> colours = readAccessor<uint8_t>(model, p.attributes.at("COLOR_0"));
+        const std::vector<uint32_t> indices = readAccessor<uint32_t>(model, p.indices);
+        ASSERT_EQ(positions.size(), 3 * mesh.vertices.size());
+        ASSERT_EQ(colours.size(), 4 * mesh.vertices.size());
+        EXPECT_EQ(indices, mesh.indices);
+        for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+            const render::MeshVertex& in = mesh.vertices[v];
+            EXPECT_EQ(glm::vec3(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]), in.position);
+            const glm::vec3 n(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+            EXPECT_EQ(n, render::unitSpaceNormal(in.normal, mesh.nominalSize));
+            EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+            uint32_t rgba = 0;
+            for (int c = 0; c < 4; ++c) rgba |= uint32_t(colours[4 * v + size_t(c)]) << (8 * c);
+            EXPECT_EQ(rgba, in.rgba);
+        }
+    }
+}
+
+TEST(ShapeMeshGlb, AnEmptyMeshIsAValidFileWithoutGeometry) {
+    render::TerminalMesh empty;
+    empty.shape = "nothing";
+    const std::vector<uint8_t> glb = shapeMeshGlb(empty, empty.shape);
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size()))) << err;
+    EXPECT_TRUE(model.meshes.empty());
+    EXPECT_EQ(model.nodes.size(), 1u);
 }
 
 } // namespace

@@ -55,8 +55,11 @@ std::vector<server::JournalEntry> journalEntries(const std::string& path) {
     return entries;
 }
 
+// Journal tests need no impostors: without the bake a start takes well under a second, so a
+// test can restart the service many times.
 std::vector<std::string> serveArguments(const std::string& scene, const std::string& journal) {
-    return {"--scene", scene, "--port", "0", "--journal", journal, "--web-root", scene + ".no-viewer"};
+    return {"--scene",       scene, "--port", "0", "--journal", journal, "--web-root", scene + ".no-viewer",
+            "--no-impostors"};
 }
 
 // Serves `scene` on `journal`, applies `edits` (POST bodies) and stops with SIGTERM.

@@ -225,11 +225,7 @@ TEST_F(Endpoints, BuildingEditsHistoryHealthAndMetrics) {
         EXPECT_NE(metrics.body.find(family), std::string::npos) << family;
 }
 
-TEST_F(Endpoints, NotYetServedContentSays501AndUnknownRoutes404) {
-    const auto meshes = live->get("/api/v1/meshes/window");
-    EXPECT_EQ(meshes.status, 501);
-    EXPECT_NE(meshes.body.find("terminal meshes"), std::string::npos);
-    EXPECT_EQ(live->get("/api/v1/impostors/window").status, 501);
+TEST_F(Endpoints, UnknownRoutesAndApiVersions404) {
     EXPECT_EQ(live->get("/api/v1/nothing").status, 404);
     const auto v2 = live->get("/api/v2/scene");
     EXPECT_EQ(v2.status, 404);

@@ -4,13 +4,22 @@
 
 #include "hexlod/render/image.h"
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace hexlod::render {
 
-// Writes an RGBA or single-channel image as 8-bit PNG. Colour is taken as linear and encoded
-// to sRGB; alpha and single-channel images are written as they are, clamped to [0, 1].
-bool writePng(const std::string& path, const Image& image, std::string& error);
+// How a PNG's first three channels are quantised: Srgb takes them as linear colour and encodes
+// them to sRGB; Data writes them as they are (normals, depth), clamped to [0, 1]. Alpha and
+// single-channel images are always written as they are.
+enum class PngTransfer : uint8_t { Srgb, Data };
+
+// Writes an RGBA or single-channel image as 8-bit PNG.
+bool writePng(const std::string& path, const Image& image, std::string& error,
+              PngTransfer transfer = PngTransfer::Srgb);
+// The same PNG file, in memory (for HTTP replies).
+bool encodePng(const Image& image, PngTransfer transfer, std::vector<uint8_t>& out, std::string& error);
 
 // Writes RGBA (channels R, G, B, A) or single-channel (channel Z) half-float EXR.
 bool writeExr(const std::string& path, const Image& image, std::string& error);

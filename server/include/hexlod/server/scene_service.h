@@ -23,6 +23,7 @@
 #include "hexlod/server/generation_pool.h"
 #include "hexlod/server/metrics.h"
 #include "hexlod/server/payload_cache.h"
+#include "hexlod/server/shape_assets.h"
 
 #include <nlohmann/json.hpp>
 
@@ -98,6 +99,16 @@ public:
     void fetch(PayloadKind kind, uint32_t batch, const cache::BatchKey& key,
                std::function<void(const PayloadOutcome&)> done);
 
+    // Terminal meshes and impostors (shape_assets.h). Attach before the service answers its
+    // first request: the summary is rebuilt, and the assets are read without a lock after.
+    void attachShapeAssets(ShapeAssets assets);
+    const ShapeAssets& shapeAssets() const { return assets_; }
+    // "/api/v1/meshes/{grammar}/{shape}/{hash}.glb"; empty when the shape has no mesh served.
+    std::string meshUrl(uint32_t grammar, uint32_t shape) const;
+    // "/api/v1/impostors/{grammar}/{shape}/{key}" + suffix (".albedo.png", ".normal.png",
+    // ".exr"); empty when the shape has no impostor.
+    std::string impostorUrl(uint32_t grammar, uint32_t shape, const char* suffix) const;
+
     // Write side, one thread at a time.
     EditOutcome edit(const EditSpec& edit);
     EditOutcome undo();
@@ -138,6 +149,7 @@ private:
     PayloadBytes storeExtruded(uint32_t batch, const cache::BatchKey& key, const grammar::ExtrudedSet& set);
     PayloadOutcome staleOutcome(PayloadKind kind, uint32_t batch) const;
     nlohmann::json staticSummary() const;
+    nlohmann::json shapeJson(uint32_t grammar, uint32_t shape) const;
     std::string buildIndex() const; // under stateMutex_ shared
 
     ServiceOptions options_;
@@ -152,6 +164,8 @@ private:
     Metrics metrics_;
     std::vector<std::string> notes_;
     nlohmann::json staticSummary_;
+    ShapeAssets assets_;
+    bool assetsAttached_ = false;
     std::vector<cells::BuildingRef> buildingRefs_; // by building id
 
     // Published state, guarded by stateMutex_.

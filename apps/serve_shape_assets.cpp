@@ -1,0 +1,170 @@
+#include "serve_shape_assets.h"
+
+#include "shape_mesh_glb.h"
+
+#include "hexlod/render/image_io.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+namespace hexlod::apps {
+namespace {
+
+using server::AssetBytes;
+
+AssetBytes share(std::vector<uint8_t> bytes) {
+    return std::make_shared<const std::vector<uint8_t>>(std::move(bytes));
+}
+
+std::array<float, 3> array3(const glm::vec3& v) {
+    return {v.x, v.y, v.z};
+}
+
+nlohmann::json json3(const glm::vec3& v) {
+    return {v.x, v.y, v.z};
+}
+
+// Every declared shape's mesh; shapes that share a mesh object share its bytes.
+size_t addMeshes(const render::TerminalMeshLibrary& library, server::ShapeAssets& assets) {
+    std::map<const render::TerminalMesh*, AssetBytes> encoded;
+    assets.meshes.resize(library.grammarCount());
+    for (uint32_t g = 0; g < library.grammarCount(); ++g) {
+        for (uint16_t s = 0; s < library.shapeCount(g); ++s) {
+            const render::TerminalMesh& mesh = library.mesh(g, s);
+            AssetBytes& bytes = encoded[&mesh];
+            if (!bytes) bytes = share(shapeMeshGlb(mesh, mesh.shape));
+            assets.meshes[g].push_back(server::MeshAsset{mesh.contentHash, bytes, array3(mesh.nominalSize)});
+        }
+    }
+    assets.meshesServed = true;
+    return encoded.size();
+}
+
+// The normal-and-depth view as an 8-bit image: n * 0.5 + 0.5 and depth * 0.5 + 0.5, so an
+// empty texel (depth -1) has alpha 0.
+render::Image normalDepthImage(const render::Image& normalDepth) {
+    render::Image out = normalDepth;
+    for (float& v : out.pixels) v = v * 0.5f + 0.5f;
+    return out;
+}
+
+AssetBytes readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return nullptr;
+    return share(std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {}));
+}
+
+// The facade impostors' files, per (grammar, shape). False with a reason when one cannot be
+// encoded.
+bool addImpostors(const lod::SceneImpostors& baked, const std::string& storeDirectory,
+                  server::ShapeAssets& assets, std::string& error) {
+    std::optional<impostor::ImpostorStore> store;
+    if (!storeDirectory.empty()) store.emplace(storeDirectory);
+    std::vector<server::ImpostorAsset> layers(baked.facades.size());
+    for (size_t i = 0; i < baked.facades.size(); ++i) {
+        const impostor::ImpostorAtlas& atlas = baked.facades[i];
+        server::ImpostorAsset& asset = layers[i];
+        asset.key = atlas.contentKey;
+        asset.layer = uint32_t(i);
+        asset.centre = array3(atlas.centre);
+        asset.radius = atlas.radius;
+        asset.boundsMin = array3(atlas.boundsMin);
+        asset.boundsMax = array3(atlas.boundsMax);
+        std::vector<uint8_t> albedo, normal;
+        if (!render::encodePng(atlas.albedo, render::PngTransfer::Srgb, albedo, error) ||
+            !render::encodePng(normalDepthImage(atlas.normalDepth), render::PngTransfer::Data, normal,
+                               error)) {
+            error = atlas.shape + ": " + error;
+            return false;
+        }
+        asset.albedoPng = share(std::move(albedo));
+        asset.normalPng = share(std::move(normal));
+        if (store) asset.exr = readFile(store->pathFor(atlas.shape, atlas.contentKey));
+    }
+    assets.impostors.resize(baked.facadeLayer.size());
+    for (size_t g = 0; g < baked.facadeLayer.size(); ++g) {
+        for (const int layer : baked.facadeLayer[g]) {
+            assets.impostors[g].push_back(layer >= 0 ? std::optional(layers[size_t(layer)]) : std::nullopt);
+        }
+    }
+    assets.impostorsServed = true;
+    return true;
+}
+
+} // namespace
+
+nlohmann::json impostorLayoutJson(const impostor::ViewLayout& layout) {
+    nlohmann::json views = nlohmann::json::array();
+    uint32_t central = 0;
+    for (uint32_t v = 0; v < layout.viewCount(); ++v) {
+        const glm::vec3 d = layout.direction(v);
+        const impostor::ViewBasis basis = impostor::viewBasis(layout.sphere, d);
+        const glm::uvec2 tile = layout.tileOrigin(v);
+        views.push_back({{"direction", json3(d)},
+                         {"right", json3(basis.right)},
+                         {"up", json3(basis.up)},
+                         {"tile", {tile.x, tile.y}}});
+        if (d.z > layout.direction(central).z) central = v;
+    }
+    return {{"sphere", layout.sphere == impostor::ViewSphere::Hemisphere ? "hemi-octahedral" : "octahedral"},
+            {"grid", layout.grid},
+            {"view_resolution", layout.viewResolution},
+            {"padding", layout.padding},
+            {"atlas_size", layout.atlasSize()},
+            {"central_view", central},
+            {"projection",
+             "orthographic over the bounding sphere (centre, radius): a view's tile maps [-radius, radius]^2 "
+             "along (right, up) to its inner texels, rows from the top"},
+            {"views", views}};
+}
+
+server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const ServeAssetSetup& setup) {
+    server::ShapeAssets assets;
+    const auto start = std::chrono::steady_clock::now();
+    const std::unique_ptr<render::TerminalMeshLibrary> library = sceneMeshLibrary(catalog);
+    for (const std::string& note : library->notes()) assets.notes.push_back("meshes: " + note);
+    const size_t distinct = addMeshes(*library, assets);
+    assets.notes.push_back("terminal meshes (glTF): " + std::to_string(distinct) + " distinct meshes for " +
+                           std::to_string(catalog.index().grammarCount()) + " grammars, unit scope space");
+    if (!setup.render.impostors) {
+        assets.notes.push_back("impostors (EXR, PNG): off (--no-impostors)");
+        return assets;
+    }
+    render::GlContextResult gl = render::createGlContext({setup.render.backend, true});
+    if (!gl.context) {
+        assets.notes.push_back("impostors (EXR, PNG): not served (no GL context to bake them: " + gl.error() +
+                               ")");
+        return assets;
+    }
+    assets.notes.push_back(glContextNote(*gl.context) + ", for the impostor bake only");
+    lod::SceneImpostorOptions options = sceneImpostorOptions(setup.render);
+    options.treeSpecies = false; // clients draw trees from their terminal sets
+    lod::SceneImpostors baked;
+    lod::SceneImpostorReport report;
+    std::string error;
+    bool ok = false;
+    try {
+        ok = lod::bakeSceneImpostors(catalog.scene(), *library, options, baked, report, error) &&
+             addImpostors(baked, options.storeDirectory, assets, error);
+    } catch (const std::filesystem::filesystem_error& e) {
+        error = std::string("impostor store: ") + e.what(); // a folder that cannot be created
+    }
+    if (!ok) {
+        assets.impostors.clear();
+        assets.notes.push_back("impostors (EXR, PNG): not served (" + error + ")");
+        return assets;
+    }
+    assets.impostorLayout = impostorLayoutJson(options.facadeLayout);
+    appendImpostorNotes(report, assets.notes);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    assets.notes.push_back("impostors (EXR, PNG): facade shapes only (tree species are not served); " +
+                           std::to_string(assets.byteSize() >> 10) +
+                           " KiB of meshes and impostor files, built in " +
+                           std::to_string(int(seconds * 1000.0)) + " ms");
+    return assets;
+}
+
+} // namespace hexlod::apps

@@ -1,0 +1,24 @@
+// What `hexlod serve` builds before it answers: every declared shape's mesh as .glb, and the
+// impostors of the facade shapes the scene's buildings emit, baked (or loaded from the EXR
+// store) in a GL context that lives only for the bake. Without a GL context, or with
+// impostors off, the service serves meshes only and says why in its notes.
+#pragma once
+
+#include "city_session.h"
+
+#include "hexlod/server/shape_assets.h"
+
+namespace hexlod::apps {
+
+struct ServeAssetSetup {
+    RenderSetup render; // GL backend, facade layout, store; render.impostors false: meshes only
+};
+
+server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const ServeAssetSetup& setup);
+
+// The JSON of a facade layout for clients (docs/protocol.md, "impostor_layout"): the grid, the
+// tile geometry, and each view's direction and image axes, so a client needs no copy of the
+// octahedral mapping to pick and blend views.
+nlohmann::json impostorLayoutJson(const impostor::ViewLayout& layout);
+
+} // namespace hexlod::apps

@@ -1,0 +1,53 @@
+// What the service hands out per terminal shape besides batch content: the shape's mesh as
+// .glb and, for shapes the scene's buildings emit, its impostor views (albedo PNG, normal and
+// depth PNG, the EXR of the store). They are built once before the service starts serving
+// (the app builds them with the render and lod modules, which need meshes and GL; the service
+// itself stays free of both) and never change: parameter edits do not touch a shape's mesh,
+// so every URL is content-addressed and immutable.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hexlod::server {
+
+using AssetBytes = std::shared_ptr<const std::vector<uint8_t>>;
+
+struct MeshAsset {
+    uint64_t hash = 0; // render::TerminalMesh::contentHash: the URL's key
+    AssetBytes glb;
+    std::array<float, 3> nominalSize{1.0f, 1.0f, 1.0f};
+};
+
+struct ImpostorAsset {
+    uint64_t key = 0;   // impostor::ImpostorAtlas::contentKey: the URL's key
+    uint32_t layer = 0; // index among the scene's facade impostors (a texture array layer)
+    std::array<float, 3> centre{}, boundsMin{}, boundsMax{};
+    float radius = 1.0f;
+    AssetBytes albedoPng; // sRGB colour, alpha = coverage
+    AssetBytes normalPng; // rgb = shape-space normal * 0.5 + 0.5, alpha = depth * 0.5 + 0.5 (0: empty)
+    AssetBytes exr;       // the store's file; null when baked without a store
+};
+
+struct ShapeAssets {
+    // [grammar][shape] in the scene's grammar order; a missing entry is not served.
+    std::vector<std::vector<std::optional<MeshAsset>>> meshes;
+    std::vector<std::vector<std::optional<ImpostorAsset>>> impostors;
+    // The facade view layout every impostor above shares (docs/protocol.md); null without any.
+    nlohmann::json impostorLayout;
+    bool meshesServed = false, impostorsServed = false;
+    // What was built or left out and why, for /api/v1/scene's notes.
+    std::vector<std::string> notes;
+
+    const MeshAsset* mesh(uint32_t grammar, uint32_t shape) const;
+    const ImpostorAsset* impostor(uint32_t grammar, uint32_t shape) const;
+    uint64_t byteSize() const;
+};
+
+} // namespace hexlod::server

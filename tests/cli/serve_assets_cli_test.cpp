@@ -1,0 +1,284 @@
+// `hexlod serve`'s shape assets as a client sees them, from a real process with a real GL bake
+// (llvmpipe here): a .glb for every declared shape that decodes to the library's mesh, an
+// impostor for exactly the shapes the scene's buildings emit and for nothing else, PNGs of the
+// atlas's size that agree with the EXR the store holds, and a store reused on the next start.
+// Without GL (--no-impostors) the meshes are still served and the notes say why impostors are not.
+#include "serve_process.h"
+
+#include "../server/live_server.h"
+
+#include "hexlod/grammar/rule_reachability.h"
+#include "hexlod/impostor/impostor_store.h"
+#include "hexlod/render/terminal_mesh_library.h"
+
+#include <gtest/gtest.h>
+#include <stb_image.h>
+#include <tiny_gltf.h>
+
+#include <csignal>
+#include <fstream>
+
+namespace hexlod::test {
+namespace {
+
+using Json = nlohmann::json;
+
+std::vector<std::string> baseArguments(const TemporaryFolder& folder, const std::string& scene,
+                                       const std::string& journal = "edits.jsonl") {
+    return {"--scene",    scene,
+            "--port",     "0",
+            "--journal",  folder.file(journal),
+            "--web-root", folder.file("no-viewer")};
+}
+
+// Small impostors, so the bake on a software GL stays short.
+std::vector<std::string> serveArguments(const TemporaryFolder& folder, const std::string& scene,
+                                        const std::string& journal = "edits.jsonl") {
+    std::vector<std::string> args = baseArguments(folder, scene, journal);
+    for (const char* a : {"--impostor-grid", "4", "--impostor-res", "16", "--impostor-store"})
+        args.push_back(a);
+    args.push_back(folder.file("store"));
+    return args;
+}
+
+struct DecodedPng {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+DecodedPng decodePng(const std::string& body) {
+    DecodedPng out;
+    int channels = 0;
+    unsigned char* pixels = stbi_load_from_memory(reinterpret_cast<const unsigned char*>(body.data()),
+                                                  int(body.size()), &out.width, &out.height, &channels, 4);
+    EXPECT_NE(pixels, nullptr) << stbi_failure_reason();
+    if (!pixels) return out;
+    out.rgba.assign(pixels, pixels + size_t(out.width) * out.height * 4);
+    stbi_image_free(pixels);
+    return out;
+}
+
+std::string note(const Json& summary, const std::string& prefix) {
+    for (const Json& n : summary["notes"])
+        if (n.get<std::string>().rfind(prefix, 0) == 0) return n;
+    return {};
+}
+
+class ServeAssets : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        folder = new TemporaryFolder();
+        scenePath = new std::string(writeSmallScene(folder->path()));
+        serve = new ServeProcess(serveArguments(*folder, *scenePath));
+        // The first start bakes every emitted shape on a software GL.
+        ASSERT_TRUE(serve->waitUntilServing(std::chrono::seconds(240))) << serve->stderrText();
+        connection = new http_client::Connection("127.0.0.1", serve->port());
+        const auto reply = connection->get("/api/v1/scene");
+        ASSERT_EQ(reply.status, 200);
+        summary = new Json(Json::parse(reply.body));
+        built = new scene::BuiltScene(buildSmallScene(*scenePath));
+    }
+    static void TearDownTestSuite() {
+        delete connection;
+        if (serve) {
+            EXPECT_EQ(serve->stop(SIGTERM), 0);
+        }
+        delete serve;
+        delete summary;
+        delete built;
+        delete scenePath;
+        delete folder;
+    }
+    static const grammar::CompiledGrammar& grammarAt(size_t g) {
+        const size_t buildings = built->buildingGrammars.size();
+        return g < buildings ? built->buildingGrammars[g].grammar
+                             : built->treeGrammars[g - buildings].grammar;
+    }
+
+    static TemporaryFolder* folder;
+    static std::string* scenePath;
+    static ServeProcess* serve;
+    static http_client::Connection* connection;
+    static Json* summary;
+    static scene::BuiltScene* built;
+};
+TemporaryFolder* ServeAssets::folder = nullptr;
+std::string* ServeAssets::scenePath = nullptr;
+ServeProcess* ServeAssets::serve = nullptr;
+http_client::Connection* ServeAssets::connection = nullptr;
+Json* ServeAssets::summary = nullptr;
+scene::BuiltScene* ServeAssets::built = nullptr;
+
+TEST_F(ServeAssets, ImpostorsForExactlyTheEmittedFacadeShapes) {
+    ASSERT_EQ((*summary)["capabilities"]["impostors"], true) << serve->stderrText();
+    EXPECT_EQ((*summary)["capabilities"]["terminal_meshes"], true);
+    const Json& grammars = (*summary)["grammars"];
+    size_t impostors = 0, declared = 0;
+    std::set<uint32_t> layers;
+    for (size_t g = 0; g < grammars.size(); ++g) {
+        const bool tree = grammars[g]["kind"] == "tree";
+        const std::vector<bool> emitted = grammar::emittedShapes(grammarAt(g));
+        ASSERT_EQ(grammars[g]["shapes"].size(), emitted.size());
+        for (size_t s = 0; s < emitted.size(); ++s) {
+            const Json& shape = grammars[g]["shapes"][s];
+            ++declared;
+            EXPECT_TRUE(shape["mesh_url"].is_string()) << shape["name"];
+            const bool expected = !tree && emitted[s];
+            EXPECT_EQ(!shape["impostor"].is_null(), expected) << grammars[g]["name"] << "/" << shape["name"];
+            if (shape["impostor"].is_null()) continue;
+            ++impostors;
+            layers.insert(shape["impostor"]["layer"].get<uint32_t>());
+            EXPECT_GT(shape["impostor"]["radius"].get<double>(), 0.0);
+        }
+    }
+    EXPECT_GT(impostors, 0u);
+    EXPECT_LT(impostors, declared); // the grammars declare shapes this scene never emits
+    EXPECT_EQ(*layers.rbegin() + 1, layers.size()) << "layers are 0..n-1";
+    EXPECT_NE(note(*summary, "impostors (EXR, PNG): facade shapes only"), "");
+}
+
+TEST_F(ServeAssets, TheLayoutListsEveryViewWithItsFrame) {
+    const Json& layout = (*summary)["impostor_layout"];
+    EXPECT_EQ(layout["sphere"], "hemi-octahedral");
+    EXPECT_EQ(layout["grid"], 4);
+    EXPECT_EQ(layout["view_resolution"], 16);
+    EXPECT_EQ(layout["atlas_size"], 64);
+    ASSERT_EQ(layout["views"].size(), 16u);
+    double best = -1.0;
+    for (const Json& view : layout["views"]) {
+        const glm::dvec3 d(view["direction"][0], view["direction"][1], view["direction"][2]);
+        const glm::dvec3 r(view["right"][0], view["right"][1], view["right"][2]);
+        const glm::dvec3 u(view["up"][0], view["up"][1], view["up"][2]);
+        EXPECT_NEAR(glm::length(d), 1.0, 1e-5);
+        EXPECT_GE(d.z, -1e-6); // the hemisphere in front of the wall
+        EXPECT_NEAR(glm::dot(d, r), 0.0, 1e-5);
+        EXPECT_NEAR(glm::dot(d, u), 0.0, 1e-5);
+        best = std::max(best, d.z);
+    }
+    EXPECT_EQ(layout["views"][layout["central_view"].get<size_t>()]["direction"][2].get<double>(), best);
+}
+
+TEST_F(ServeAssets, EveryShapeMeshDecodesToTheLibraryMesh) {
+    std::vector<const grammar::CompiledGrammar*> grammars;
+    for (size_t g = 0; g < (*summary)["grammars"].size(); ++g) grammars.push_back(&grammarAt(g));
+    const render::TerminalMeshLibrary library(grammars);
+    for (size_t g = 0; g < grammars.size(); ++g) {
+        for (size_t s = 0; s < library.shapeCount(uint32_t(g)); ++s) {
+            const Json& shape = (*summary)["grammars"][g]["shapes"][s];
+            const auto reply = connection->get(shape["mesh_url"]);
+            ASSERT_EQ(reply.status, 200) << shape["mesh_url"];
+            EXPECT_EQ(reply.header("content-type"), "model/gltf-binary");
+            tinygltf::Model model;
+            tinygltf::TinyGLTF loader;
+            std::string err, warn;
+            ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                    reinterpret_cast<const unsigned char*>(reply.body.data()),
+                                                    unsigned(reply.body.size())))
+                << err;
+            const render::TerminalMesh& mesh = library.mesh(uint32_t(g), uint16_t(s));
+            ASSERT_EQ(model.meshes.size(), 1u);
+            const tinygltf::Accessor& positions =
+                model.accessors.at(size_t(model.meshes[0].primitives.at(0).attributes.at("POSITION")));
+            EXPECT_EQ(positions.count, mesh.vertices.size()) << mesh.shape;
+            EXPECT_EQ(positions.maxValues.at(1), double(mesh.boundsMax.y)) << mesh.shape;
+            EXPECT_EQ(shape["nominal_size"][0].get<float>(), mesh.nominalSize.x);
+        }
+    }
+}
+
+TEST_F(ServeAssets, PngsAreTheAtlasAndAgreeWithTheStoredExr) {
+    const Json& shape = (*summary)["grammars"][0]["shapes"][0];
+    ASSERT_FALSE(shape["impostor"].is_null());
+    const auto albedo = connection->get(shape["impostor"]["albedo_url"]);
+    const auto normal = connection->get(shape["impostor"]["normal_url"]);
+    const auto exr = connection->get(shape["impostor"]["exr_url"]);
+    ASSERT_EQ(albedo.status, 200);
+    ASSERT_EQ(normal.status, 200);
+    ASSERT_EQ(exr.status, 200);
+    EXPECT_EQ(exr.header("content-type"), "image/x-exr");
+    const std::string exrPath = folder->file("fetched.exr");
+    std::ofstream(exrPath, std::ios::binary) << exr.body;
+    impostor::ImpostorAtlas atlas;
+    std::string error;
+    ASSERT_TRUE(impostor::readImpostorFile(exrPath, atlas, error)) << error;
+    EXPECT_EQ(atlas.shape, shape["name"]);
+    EXPECT_NEAR(atlas.radius, shape["impostor"]["radius"].get<double>(), 1e-6);
+
+    const DecodedPng a = decodePng(albedo.body), n = decodePng(normal.body);
+    ASSERT_EQ(a.width, 64);
+    ASSERT_EQ(a.height, 64);
+    ASSERT_EQ(n.width, 64);
+    size_t covered = 0, empty = 0;
+    for (uint32_t y = 0; y < 64; ++y) {
+        for (uint32_t x = 0; x < 64; ++x) {
+            const size_t i = (size_t(y) * 64 + x) * 4;
+            const float* texel = atlas.albedo.at(x, y);
+            const float* nd = atlas.normalDepth.at(x, y);
+            // Coverage as the EXR holds it, to 8 bits.
+            EXPECT_NEAR(a.rgba[i + 3] / 255.0, texel[3], 0.5 / 255.0 + 1e-3);
+            if (texel[3] > 0.0f) {
+                ++covered;
+                for (int c = 0; c < 3; ++c)
+                    EXPECT_NEAR(n.rgba[i + c] / 255.0, nd[c] * 0.5 + 0.5, 0.6 / 255.0);
+                EXPECT_NEAR(n.rgba[i + 3] / 255.0, nd[3] * 0.5 + 0.5, 0.6 / 255.0);
+            } else if (nd[3] <= -1.0f) {
+                ++empty;
+                EXPECT_EQ(n.rgba[i + 3], 0) << "an empty texel has depth -1: alpha 0";
+            }
+        }
+    }
+    EXPECT_GT(covered, 0u);
+    EXPECT_GT(empty, 0u);
+}
+
+TEST_F(ServeAssets, ASecondStartLoadsEveryImpostorFromTheStore) {
+    ServeProcess again(serveArguments(*folder, *scenePath, "second.jsonl")); // the first holds its journal
+    ASSERT_TRUE(again.waitUntilServing(std::chrono::seconds(120))) << again.stderrText();
+    const std::string log = again.stderrText();
+    EXPECT_NE(log.find(": 0 baked, "), std::string::npos) << "everything loaded: " << log;
+    http_client::Connection c("127.0.0.1", again.port());
+    const Json second = Json::parse(c.get("/api/v1/scene").body);
+    EXPECT_EQ(second["grammars"][0]["shapes"], (*summary)["grammars"][0]["shapes"]) << "same keys, same URLs";
+    EXPECT_EQ(again.stop(SIGTERM), 0);
+}
+
+TEST(ServeAssetsWithoutGl, MeshesAreServedAndTheNotesSayWhyImpostorsAreNot) {
+    TemporaryFolder folder;
+    const std::string scene = writeSmallScene(folder.path());
+    std::vector<std::string> args = serveArguments(folder, scene);
+    args.push_back("--no-impostors");
+    ServeProcess serve(args);
+    ASSERT_TRUE(serve.waitUntilServing()) << serve.stderrText();
+    http_client::Connection c("127.0.0.1", serve.port());
+    const Json s = Json::parse(c.get("/api/v1/scene").body);
+    EXPECT_EQ(s["capabilities"]["terminal_meshes"], true);
+    EXPECT_EQ(s["capabilities"]["impostors"], false);
+    EXPECT_TRUE(s["impostor_layout"].is_null());
+    EXPECT_EQ(note(s, "impostors (EXR, PNG): off"), "impostors (EXR, PNG): off (--no-impostors)");
+    const Json& shape = s["grammars"][0]["shapes"][0];
+    EXPECT_TRUE(shape["impostor"].is_null());
+    EXPECT_EQ(c.get(shape["mesh_url"]).status, 200);
+    EXPECT_EQ(c.get("/api/v1/impostors/0/0/0000000000000000.exr").status, 501);
+    EXPECT_FALSE(std::filesystem::exists(folder.file("store"))) << "no bake, no store";
+    EXPECT_EQ(serve.stop(SIGTERM), 0);
+}
+
+TEST(ServeAssetsOptions, BadImpostorOptionsAreRefusedByName) {
+    TemporaryFolder folder;
+    const std::string scene = writeSmallScene(folder.path());
+    for (const auto& [option, value, message] :
+         {std::tuple{"--impostor-grid", "1", "--impostor-grid: 1 is outside [2, 32]"},
+          std::tuple{"--impostor-res", "4096", "--impostor-res: 4096 is outside [16, 1024]"},
+          std::tuple{"--gl", "vulkan", "--gl: unknown backend 'vulkan'"}}) {
+        std::vector<std::string> args = baseArguments(folder, scene);
+        args.push_back(option);
+        args.push_back(value);
+        ServeProcess serve(args);
+        EXPECT_FALSE(serve.waitUntilServing(std::chrono::seconds(30)));
+        EXPECT_EQ(serve.wait(), 2) << option;
+        EXPECT_NE(serve.stderrText().find(message), std::string::npos) << serve.stderrText();
+    }
+}
+
+} // namespace
+} // namespace hexlod::test

@@ -1,0 +1,190 @@
+// The shape asset routes over HTTP with assets attached by hand: the summary's URLs, the
+// immutable replies and their 304s, stale keys that name the current URL, and every malformed
+// or unknown target. The real assets (meshes from the library, a GL bake) are tested through
+// `hexlod serve` in tests/cli/serve_assets_cli_test.cpp.
+#include "live_server.h"
+
+#include "hexlod/server/shape_assets.h"
+
+#include <gtest/gtest.h>
+
+namespace hexlod::test {
+namespace {
+
+using Json = nlohmann::json;
+
+server::AssetBytes bytes(const std::string& text) {
+    return std::make_shared<const std::vector<uint8_t>>(text.begin(), text.end());
+}
+
+std::string text(const server::AssetBytes& b) {
+    return {b->begin(), b->end()};
+}
+
+// Grammar 0: shape 0 has a mesh and an impostor baked without a store (no EXR), shape 1 a
+// mesh only; grammar 1 has one shape with a mesh and a stored impostor.
+server::ShapeAssets handMadeAssets(const server::SceneService& service) {
+    server::ShapeAssets assets;
+    const size_t grammars =
+        service.withCatalog([](const cells::BatchCatalog& c) { return c.index().grammarCount(); });
+    assets.meshes.resize(grammars);
+    assets.impostors.resize(grammars);
+    assets.meshes[0].push_back(server::MeshAsset{0x1234, bytes("glTF mesh 0"), {3.0f, 2.9f, 0.145f}});
+    assets.meshes[0].push_back(server::MeshAsset{0xabcd, bytes("glTF mesh 1"), {1.0f, 1.0f, 0.1f}});
+    server::ImpostorAsset impostor;
+    impostor.key = 0xfeed;
+    impostor.centre = {1.5f, 1.45f, 0.0f};
+    impostor.radius = 2.0f;
+    impostor.boundsMax = {3.0f, 2.9f, 0.1f};
+    impostor.albedoPng = bytes("albedo png");
+    impostor.normalPng = bytes("normal png");
+    assets.impostors[0].push_back(impostor);
+    assets.meshes[1].push_back(server::MeshAsset{0x77, bytes("glTF mesh 2"), {1.0f, 1.0f, 1.0f}});
+    impostor.key = 0xbeef;
+    impostor.layer = 1;
+    impostor.exr = bytes("exr file");
+    assets.impostors[1].push_back(impostor);
+    assets.impostorLayout = {{"sphere", "hemi-octahedral"}, {"grid", 8}};
+    assets.meshesServed = assets.impostorsServed = true;
+    assets.notes = {"terminal meshes (glTF): 3 hand-made meshes"};
+    return assets;
+}
+
+class ShapeAssetRoutes : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        live = new LiveServer();
+        live->service().attachShapeAssets(handMadeAssets(live->service()));
+    }
+    static void TearDownTestSuite() {
+        delete live;
+        live = nullptr;
+    }
+    static LiveServer* live;
+};
+LiveServer* ShapeAssetRoutes::live = nullptr;
+
+TEST_F(ShapeAssetRoutes, TheSummaryListsEachShapesMeshAndImpostor) {
+    const Json s = live->getJson("/api/v1/scene");
+    EXPECT_EQ(s["capabilities"]["terminal_meshes"], true);
+    EXPECT_EQ(s["capabilities"]["impostors"], true);
+    EXPECT_EQ(s["impostor_layout"]["grid"], 8);
+    const Json& shapes = s["grammars"][0]["shapes"];
+    ASSERT_GE(shapes.size(), 3u);
+    EXPECT_EQ(shapes[0]["index"], 0);
+    EXPECT_EQ(shapes[0]["mesh_url"], "/api/v1/meshes/0/0/0000000000001234.glb");
+    EXPECT_EQ(shapes[0]["nominal_size"], Json({3.0, 2.9, 0.145}));
+    const Json& impostor = shapes[0]["impostor"];
+    EXPECT_EQ(impostor["albedo_url"], "/api/v1/impostors/0/0/000000000000feed.albedo.png");
+    EXPECT_EQ(impostor["normal_url"], "/api/v1/impostors/0/0/000000000000feed.normal.png");
+    EXPECT_TRUE(impostor["exr_url"].is_null()); // baked without a store
+    EXPECT_EQ(impostor["centre"], Json({1.5, 1.45, 0.0}));
+    EXPECT_EQ(impostor["radius"], 2.0);
+    EXPECT_EQ(impostor["bounds_max"], Json({3.0, 2.9, 0.1}));
+    EXPECT_EQ(impostor["layer"], 0);
+    EXPECT_EQ(shapes[1]["mesh_url"], "/api/v1/meshes/0/1/000000000000abcd.glb");
+    EXPECT_TRUE(shapes[1]["impostor"].is_null());
+    // A shape without a mesh entry is listed with null URLs and its declared nominal size.
+    EXPECT_TRUE(shapes[2]["mesh_url"].is_null());
+    EXPECT_EQ(shapes[2]["nominal_size"].size(), 3u);
+    EXPECT_EQ(s["grammars"][1]["shapes"][0]["impostor"]["exr_url"],
+              "/api/v1/impostors/1/0/000000000000beef.exr");
+    bool note = false;
+    for (const Json& n : s["notes"]) note = note || n == "terminal meshes (glTF): 3 hand-made meshes";
+    EXPECT_TRUE(note);
+}
+
+TEST_F(ShapeAssetRoutes, MeshesAreImmutableAndRevalidate) {
+    const auto mesh = live->get("/api/v1/meshes/0/1/000000000000abcd.glb");
+    ASSERT_EQ(mesh.status, 200) << mesh.body;
+    EXPECT_EQ(mesh.body, "glTF mesh 1");
+    EXPECT_EQ(mesh.header("content-type"), "model/gltf-binary");
+    EXPECT_EQ(mesh.header("etag"), "\"000000000000abcd\"");
+    EXPECT_EQ(mesh.header("cache-control"), "public, max-age=31536000, immutable");
+    const auto again =
+        live->get("/api/v1/meshes/0/1/000000000000abcd.glb", {{"If-None-Match", mesh.header("etag")}});
+    EXPECT_EQ(again.status, 304);
+    EXPECT_TRUE(again.body.empty());
+}
+
+TEST_F(ShapeAssetRoutes, ImpostorFilesByKindWithTheirTypes) {
+    const auto albedo = live->get("/api/v1/impostors/0/0/000000000000feed.albedo.png");
+    ASSERT_EQ(albedo.status, 200);
+    EXPECT_EQ(albedo.body, "albedo png");
+    EXPECT_EQ(albedo.header("content-type"), "image/png");
+    EXPECT_EQ(live->get("/api/v1/impostors/0/0/000000000000feed.normal.png").body, "normal png");
+    const auto exr = live->get("/api/v1/impostors/1/0/000000000000beef.exr");
+    ASSERT_EQ(exr.status, 200);
+    EXPECT_EQ(exr.body, "exr file");
+    EXPECT_EQ(exr.header("content-type"), "image/x-exr");
+    const auto noExr = live->get("/api/v1/impostors/0/0/000000000000feed.exr");
+    EXPECT_EQ(noExr.status, 404);
+    EXPECT_NE(noExr.body.find("without a store"), std::string::npos);
+}
+
+TEST_F(ShapeAssetRoutes, AStaleKeyNamesTheCurrentUrl) {
+    const auto mesh = live->get("/api/v1/meshes/0/0/0000000000000001.glb");
+    EXPECT_EQ(mesh.status, 404);
+    EXPECT_EQ(mesh.header("x-hexlod-current"), "/api/v1/meshes/0/0/0000000000001234.glb");
+    const auto impostor = live->get("/api/v1/impostors/0/0/0000000000000001.normal.png");
+    EXPECT_EQ(impostor.status, 404);
+    EXPECT_EQ(impostor.header("x-hexlod-current"), "/api/v1/impostors/0/0/000000000000feed.normal.png");
+}
+
+TEST_F(ShapeAssetRoutes, MalformedAndUnknownTargetsSayWhy) {
+    const struct {
+        const char* target;
+        int status;
+        const char* reason;
+    } cases[] = {
+        {"/api/v1/meshes/x/0/0000000000001234.glb", 400, "grammar must be"},
+        {"/api/v1/meshes/-1/0/0000000000001234.glb", 400, "grammar must be"},
+        {"/api/v1/meshes/0/99999999999/0000000000001234.glb", 400, "shape must be"},
+        {"/api/v1/meshes/0/0/1234.glb", 400, "16 hex digits"},
+        {"/api/v1/meshes/0/0/000000000000123g.glb", 400, "16 hex digits"},
+        {"/api/v1/meshes/0/0/0000000000001234", 400, "16 hex digits"},
+        {"/api/v1/meshes/0/0/0000000000001234.gltf", 404, "<key>.glb"},
+        {"/api/v1/meshes/0/7/0000000000001234.glb", 404, "declares no shape 7 of grammar 0"},
+        {"/api/v1/meshes/99/0/0000000000001234.glb", 404, "declares no shape 0 of grammar 99"},
+        {"/api/v1/impostors/0/1/000000000000feed.albedo.png", 404, "has no impostor"},
+        {"/api/v1/impostors/0/0/000000000000feed.png", 404, "<key>.albedo.png"},
+        {"/api/v1/impostors/0/0/000000000000feed.albedo.png.exr", 404, "<key>.albedo.png"},
+        {"/api/v1/meshes/0/0", 404, ""},
+    };
+    for (const auto& c : cases) {
+        const auto reply = live->get(c.target);
+        EXPECT_EQ(reply.status, c.status) << c.target << ": " << reply.body;
+        EXPECT_NE(reply.body.find(c.reason), std::string::npos) << c.target << ": " << reply.body;
+    }
+}
+
+TEST(ShapeAssets, WithoutAnyTheRoutesSay501AndTheNotesSayWhy) {
+    const LiveServer live;
+    const auto mesh = live.get("/api/v1/meshes/0/0/0000000000001234.glb");
+    EXPECT_EQ(mesh.status, 501);
+    EXPECT_NE(mesh.body.find("terminal meshes are not served"), std::string::npos);
+    EXPECT_EQ(live.get("/api/v1/impostors/0/0/0000000000001234.exr").status, 501);
+    const Json s = live.getJson("/api/v1/scene");
+    EXPECT_EQ(s["capabilities"]["terminal_meshes"], false);
+    EXPECT_TRUE(s["impostor_layout"].is_null());
+    EXPECT_TRUE(s["grammars"][0]["shapes"][0]["mesh_url"].is_null());
+}
+
+TEST(ShapeAssets, ByteSizeCountsSharedBytesOnce) {
+    server::ShapeAssets assets;
+    const server::AssetBytes shared = bytes("0123456789");
+    assets.meshes = {{server::MeshAsset{1, shared, {}}}, {server::MeshAsset{1, shared, {}}}};
+    server::ImpostorAsset impostor;
+    impostor.albedoPng = bytes("abc");
+    impostor.normalPng = bytes("de");
+    assets.impostors = {{impostor}, {std::nullopt}};
+    EXPECT_EQ(assets.byteSize(), 15u);
+    EXPECT_EQ(text(assets.mesh(1, 0)->glb), "0123456789");
+    EXPECT_EQ(assets.mesh(2, 0), nullptr);
+    EXPECT_EQ(assets.mesh(0, 1), nullptr);
+    EXPECT_EQ(assets.impostor(1, 0), nullptr);
+    EXPECT_NE(assets.impostor(0, 0), nullptr);
+}
+
+} // namespace
+} // namespace hexlod::test
