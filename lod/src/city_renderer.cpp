@@ -417,7 +417,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.cacheLookups = cacheAfter.lookups - cacheBefore.lookups;
     stats.cacheHits = cacheAfter.hits - cacheBefore.hits;
     stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
-                     volumes_.stats().residentBytes + ground_.byteSize() +
+                     volumes_.stats().residentBytes + ground_.byteSize() + trees_.byteSize() +
                      uint64_t(options_.width) * options_.height * 12 * options_.samples;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;

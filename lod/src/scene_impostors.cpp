@@ -49,7 +49,7 @@ std::string SceneImpostorReport::summary() const {
     }
     std::ostringstream text;
     text << "impostors: " << made << " of " << declaredShapes
-         << " declared shapes (used by this scene): " << made - loaded << " baked, " << loaded
+         << " declared shapes baked (used by this scene): " << made - loaded << " new, " << loaded
          << " loaded from the store";
     if (treeSpecies > 0) text << "; " << treeSpecies << " tree species";
     return text.str();

@@ -24,10 +24,11 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
         for (size_t s = 0; s < impostors->speciesParameters.size(); ++s)
             speciesOf[{impostors->speciesGrammar[s], impostors->speciesParameters[s]}] = float(s);
     }
-    uint32_t maxId = 0;
+    size_t byId = 0;
     for (const scene::GrammarBuildings& grammar : scene.treeGrammars)
-        for (const grammar::BuildingInput& tree : grammar.buildings) maxId = std::max(maxId, tree.id);
-    trees_.assign(size_t(maxId) + 1, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+        for (const grammar::BuildingInput& tree : grammar.buildings)
+            byId = std::max<size_t>(byId, tree.id + 1);
+    trees_.assign(byId, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     std::vector<glm::vec4> instances;
     ranges_.assign(catalog.batchCount(), {0u, 0u});
     for (uint32_t b = 0; b < catalog.batchCount(); ++b) {
@@ -47,6 +48,8 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
             instances.push_back(t);
         }
     }
+    // Without trees the two buffers are one-element placeholders (the cull pass binds the
+    // tree buffer whatever the scene) and count as nothing.
     auto upload = [](uint32_t& buffer, const std::vector<glm::vec4>& data) {
         gl::glCreateBuffers(1, &buffer);
         gl::glNamedBufferStorage(buffer, GLsizeiptr(std::max<size_t>(data.size(), 1) * sizeof(glm::vec4)),
@@ -67,7 +70,7 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
     impostor::ViewLookup lookup(layout);
     if (!textures_.upload(layout, atlases, lookup.buildTable(64), error)) return false;
     upload(spheres_, spheres);
-    bytes_ += spheres.size() * sizeof(glm::vec4);
+    bytes_ += spheres.size() * sizeof(glm::vec4) + textures_.byteSize();
     render::ShaderLibrary library = lodShaderLibrary();
     program_ = render::ShaderProgram::build(library,
                                             {{render::ShaderStage::Vertex, "tree_billboard.vert"},

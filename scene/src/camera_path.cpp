@@ -99,12 +99,7 @@ std::vector<CameraPose> CameraPath::sample(uint32_t frames, const glm::dvec3& or
 
 bool parseCameraPath(std::string_view text, const std::string& file, CameraPath& out, std::string& error) {
     Json document;
-    try {
-        document = Json::parse(text.begin(), text.end());
-    } catch (const Json::parse_error& e) {
-        error = file + ":" + lineAndColumn(text, e.byte) + ": not valid JSON";
-        return false;
-    }
+    if (!parseJsonText(text, file, document, error)) return false;
     CameraPath path;
     try {
         Fields root(document, "");

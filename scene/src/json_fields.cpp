@@ -5,6 +5,9 @@
 
 namespace hexlod::scene {
 
+namespace {
+
+// "line:column" of a byte offset.
 std::string lineAndColumn(std::string_view text, size_t byte) {
     size_t line = 1, column = 1;
     for (size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
@@ -16,6 +19,30 @@ std::string lineAndColumn(std::string_view text, size_t byte) {
         }
     }
     return std::to_string(line) + ":" + std::to_string(column);
+}
+
+} // namespace
+
+bool parseJsonText(std::string_view text, const std::string& file, Json& out, std::string& error) {
+    try {
+        out = Json::parse(text.begin(), text.end());
+        return true;
+    } catch (const Json::parse_error& e) {
+        error = file + ":" + lineAndColumn(text, e.byte) + ": not valid JSON";
+    } catch (const Json::out_of_range& e) {
+        // No offset comes with it, only the number ("number overflow parsing '1e999'"): the
+        // position given is where those characters first appear, which is the number itself
+        // unless the same characters came earlier inside a string.
+        const std::string what = e.what();
+        const size_t open = what.find("parsing '"), close = what.rfind('\'');
+        const std::string number =
+            open != std::string::npos && close > open + 9 ? what.substr(open + 9, close - open - 9) : "";
+        const size_t at = number.empty() ? std::string_view::npos : text.find(number);
+        error = file + (at == std::string_view::npos ? "" : ":" + lineAndColumn(text, at + 1)) +
+                ": a number is out of range (" + (number.empty() ? "too large" : number) +
+                " does not fit a double)";
+    }
+    return false;
 }
 
 LodProfile readLodProfile(const Json& value, const std::string& path, LodProfile lod) {
@@ -49,12 +76,7 @@ bool loadLodProfile(const std::string& path, LodProfile& out, std::string& error
     text << in.rdbuf();
     const std::string content = text.str();
     Json document;
-    try {
-        document = Json::parse(content);
-    } catch (const Json::parse_error& e) {
-        error = path + ":" + lineAndColumn(content, e.byte) + ": not valid JSON";
-        return false;
-    }
+    if (!parseJsonText(content, path, document, error)) return false;
     try {
         out = readLodProfile(document, "", out);
     } catch (const ConfigError& e) {

@@ -92,8 +92,10 @@ private:
     std::set<std::string> read_;
 };
 
-// "line:column" of a byte offset, for JSON syntax errors.
-std::string lineAndColumn(std::string_view text, size_t byte);
+// Parses a config's JSON text. False with "<file>:<line>:<column>: not valid JSON" for a
+// syntax error, and "<file>:<line>:<column>: a number is out of range" for one too large for
+// a double (1e999), which nlohmann reports by another exception than syntax errors.
+bool parseJsonText(std::string_view text, const std::string& file, Json& out, std::string& error);
 
 // Reads an LOD profile object at `path` over `fallback`.
 LodProfile readLodProfile(const Json& value, const std::string& path, LodProfile fallback);

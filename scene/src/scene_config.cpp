@@ -235,12 +235,7 @@ int SceneConfig::findGrammar(const std::string& grammarName) const {
 bool parseSceneConfig(std::string_view text, const std::string& file, const std::string& baseDir,
                       SceneConfig& out, std::string& error) {
     Json document;
-    try {
-        document = Json::parse(text.begin(), text.end());
-    } catch (const Json::parse_error& e) {
-        error = file + ":" + lineAndColumn(text, e.byte) + ": not valid JSON";
-        return false;
-    }
+    if (!parseJsonText(text, file, document, error)) return false;
     SceneConfig scene;
     scene.file = file;
     try {

@@ -158,6 +158,10 @@ bool checkSelector(const cells::BatchCatalog& catalog, const EditSpec& edit, Edi
 }
 
 std::string fieldOfCatalogError(const std::string& message) {
+    // What the catalog says of a selection that checkSelector let through (a grammar whose
+    // members are all gone, say) is the selector's fault, not the parameters'.
+    for (const char* selection : {"holds no building", "is not in the scene"})
+        if (message.find(selection) != std::string::npos) return "selector";
     const std::string prefix = "parameter '";
     if (message.rfind(prefix, 0) != 0) return "params";
     const size_t end = message.find('\'', prefix.size());

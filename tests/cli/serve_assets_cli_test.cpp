@@ -235,7 +235,7 @@ TEST_F(ServeAssets, ASecondStartLoadsEveryImpostorFromTheStore) {
     ServeProcess again(serveArguments(*folder, *scenePath, "second.jsonl")); // the first holds its journal
     ASSERT_TRUE(again.waitUntilServing(std::chrono::seconds(120))) << again.stderrText();
     const std::string log = again.stderrText();
-    EXPECT_NE(log.find(": 0 baked, "), std::string::npos) << "everything loaded: " << log;
+    EXPECT_NE(log.find(": 0 new, "), std::string::npos) << "everything loaded: " << log;
     http_client::Connection c("127.0.0.1", again.port());
     const Json second = Json::parse(c.get("/api/v1/scene").body);
     EXPECT_EQ(second["grammars"][0]["shapes"], (*summary)["grammars"][0]["shapes"]) << "same keys, same URLs";

@@ -2,6 +2,8 @@
 // arbitrary bytes must be rejected with a reason or decode to a set that re-encodes and
 // decodes to itself. Together with ASan this checks that no input reads out of bounds or
 // allocates what its header merely claims (-rss_limit_mb catches the latter).
+#include "fuzz_check.h"
+
 #include "hexlod/grammar/extruded_set_codec.h"
 
 #include <cstdlib>
@@ -11,9 +13,7 @@ namespace {
 
 using namespace hexlod::grammar;
 
-void check(bool condition) {
-    if (!condition) std::abort();
-}
+using hexlod::fuzz::check;
 
 bool sameBits(const void* a, const void* b, size_t bytes) {
     return bytes == 0 || std::memcmp(a, b, bytes) == 0;

@@ -2,6 +2,8 @@
 // a grammar and, if it compiles, one small building is expanded with it. Tight expansion
 // limits keep each input to a few milliseconds, so the fuzzer spends its time on the
 // lexer, parser, checker and rule code rather than on legitimately huge derivations.
+#include "fuzz_check.h"
+
 #include "hexlod/grammar/compiled_grammar.h"
 #include "hexlod/grammar/expander.h"
 
@@ -15,10 +17,7 @@ namespace {
 
 using namespace hexlod::grammar;
 
-// Invariant violations abort so that libFuzzer records the input like any other crash.
-void check(bool condition) {
-    if (!condition) std::abort();
-}
+using hexlod::fuzz::check;
 
 void checkCompiled(const CompiledGrammar& g) {
     check(!g.rules.empty());

@@ -7,6 +7,8 @@
 // Invariants (abort on violation, so libFuzzer keeps the input): the handler answers exactly
 // once and within 10 s; the status is a real one; every error reply is a JSON object with
 // a reason; a JSON 200 reply parses as JSON.
+#include "fuzz_check.h"
+
 #include "hexlod/scene/scene_builder.h"
 #include "hexlod/server/beast_request.h"
 #include "hexlod/server/service_api.h"
@@ -27,8 +29,20 @@ namespace {
 namespace http = boost::beast::http;
 using namespace hexlod;
 
-void check(bool condition) {
-    if (!condition) std::abort();
+using hexlod::fuzz::check;
+
+// Small stand-ins for the meshes and impostors `hexlod serve` builds, so the shape routes'
+// parsing and lookups are reached (their real content is tested in tests/cli).
+server::ShapeAssets shapeAssets() {
+    const auto bytes = std::make_shared<const std::vector<uint8_t>>(std::vector<uint8_t>{'g', 'l', 'T', 'F'});
+    server::ShapeAssets assets;
+    assets.meshes = {{server::MeshAsset{0x0123456789abcdef, bytes, {1.0f, 1.0f, 0.1f}}, std::nullopt}};
+    server::ImpostorAsset impostor;
+    impostor.key = 0x0123456789abcdef;
+    impostor.albedoPng = impostor.normalPng = bytes;
+    assets.impostors = {{impostor}};
+    assets.meshesServed = assets.impostorsServed = true;
+    return assets;
 }
 
 struct Fixture {
@@ -57,6 +71,7 @@ struct Fixture {
         std::vector<std::string> log;
         service = server::SceneService::create(std::move(built), cache::CacheOptions{}, options, log, error);
         check(service != nullptr);
+        service->attachShapeAssets(shapeAssets());
         api = std::make_unique<server::ServiceApi>(
             *service,
             server::ApiOptions{"", folder + "/no-viewer", [](std::function<void()> job) { job(); }});

@@ -54,7 +54,7 @@ TEST_F(SceneImpostorsTest, AGrammarThatEmitsThreeShapesBakesThreeAndNoTrees) {
     EXPECT_TRUE(impostors.species.empty());
     EXPECT_EQ(report.treeSpecies, 0u);
     EXPECT_EQ(report.summary(),
-              "impostors: 3 of 6 declared shapes (used by this scene): 3 baked, 0 loaded from the store");
+              "impostors: 3 of 6 declared shapes baked (used by this scene): 3 new, 0 loaded from the store");
     // Shapes without an impostor map to -1, the others to their atlas.
     const grammar::CompiledGrammar& g = city.catalog->grammar(0).grammar;
     EXPECT_EQ(impostors.facadeLayer[0][size_t(g.findShape("balcony"))], -1);

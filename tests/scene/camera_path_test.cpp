@@ -94,6 +94,12 @@ INSTANTIATE_TEST_SUITE_P(
     Table, BadCameraPathTest,
     ::testing::Values(
         BadPath{"{", "bad.json:1:2: not valid JSON"},
+        // Found by the camera_path fuzzer: a number past a double's range escaped as an exception.
+        BadPath{R"({"near": 1e999})",
+                "bad.json:1:10: a number is out of range (1e999 does not fit a double)"},
+        BadPath{"{\"a\":\n -2000000000000000000000000000e400}",
+                "bad.json:2:2: a number is out of range (-2000000000000000000000000000e400 does not fit a "
+                "double)"},
         BadPath{"[]", "bad.json: top level: expected an object"},
         BadPath{"{}", "bad.json: keyframes: is required"},
         BadPath{R"({"keyframes": []})", "bad.json: keyframes: expected a non-empty array"},

@@ -113,6 +113,8 @@ struct BadConfig {
 TEST(SceneConfig, BadConfigsNameTheField) {
     const BadConfig cases[] = {
         {"NotJson", "{\"grammars\": ", "s.json:1:14: not valid JSON"},
+        {"NumberOverflow", variant("\"grammars\"", "\"cell_size\": 1e999, \"grammars\""),
+         "s.json:2:16: a number is out of range (1e999 does not fit a double)"},
         {"NotAnObject", "[1]", "s.json: top level: expected an object"},
         {"MissingGrammars", R"({"buildings": []})", "s.json: grammars: is required"},
         {"Typo", variant("\"grammars\"", "\"cel_size\": 3, \"grammars\""), "s.json: cel_size: unknown field"},

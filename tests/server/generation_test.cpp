@@ -24,6 +24,21 @@ std::vector<Json> buildingBatches(const LiveServer& live) {
     return out;
 }
 
+// The service builds no cell nobody asks for: the summary, the index and a building's record
+// generate nothing; each content request generates its own batch and no other.
+TEST(Generation, OnlyRequestedBatchesAreEverGenerated) {
+    LiveServer live;
+    live.getJson("/api/v1/scene");
+    const std::vector<Json> batches = buildingBatches(live);
+    live.getJson("/api/v1/buildings/3");
+    EXPECT_EQ(live.service().expansions(), 0u);
+    ASSERT_GE(batches.size(), 2u);
+    EXPECT_EQ(live.get(batches[1]["terminal_set"]).status, 200);
+    EXPECT_EQ(live.service().expansions(), 1u);
+    const std::string metrics = live.get("/metrics").body;
+    EXPECT_NE(metrics.find("hexlod_generations_total{kind=\"terminal_set\"} 1\n"), std::string::npos);
+}
+
 TEST(Generation, ABurstForOneMissingBatchGeneratesItOnce) {
     LiveServer live;
     const Json batch = buildingBatches(live).front();

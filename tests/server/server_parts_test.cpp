@@ -83,6 +83,8 @@ TEST(EditBody, ReadsEachSelectorFormAndNamesTheBadField) {
     EXPECT_EQ(error.field, "comment");
     EXPECT_EQ(fieldOfCatalogError("parameter 'floor_h' = 99 is outside"), "params.floor_h");
     EXPECT_EQ(fieldOfCatalogError("no parameter values given"), "params");
+    EXPECT_EQ(fieldOfCatalogError("the selection holds no building"), "selector");
+    EXPECT_EQ(fieldOfCatalogError("grammar index 7 is not in the scene"), "selector");
 }
 
 TEST(PayloadCache, EvictsLeastRecentlyUsedWithinItsBudget) {

@@ -90,6 +90,8 @@ public:
     const CityRendererOptions& options() const { return options_; }
     // What the renderer compiled: "LOD1 shaders: 2 grammars".
     std::string summary() const;
+    // GPU bytes of the tree billboards (positions, species, impostors): 0 without trees.
+    uint64_t treeBytes() const { return trees_.byteSize(); }
 
 private:
     struct Programs;

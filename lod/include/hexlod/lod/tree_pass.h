@@ -39,7 +39,7 @@ public:
     // Returns the billboards submitted.
     uint32_t draw(uint32_t batch, bool allBillboards) const;
     void begin(const render::ShaderProgram& program) const;
-    uint64_t byteSize() const { return bytes_; }
+    uint64_t byteSize() const { return bytes_; } // GPU bytes: trees, billboards, species impostors
     bool hasImpostors() const { return textures_.layers() > 0; }
     const render::ShaderProgram& program() const { return program_; }
 

@@ -40,7 +40,8 @@ bool editFromJson(const nlohmann::json& selector, const nlohmann::json& params, 
 // names and ranges are the catalog's to check (BatchCatalog::setParams).
 bool checkSelector(const cells::BatchCatalog& catalog, const EditSpec& edit, EditError& error);
 
-// The field a setParams error is about: "params.<name>" when it names a parameter.
+// The field a setParams error is about: "params.<name>" when it names a parameter, "selector"
+// when the selection is at fault, else "params".
 std::string fieldOfCatalogError(const std::string& message);
 
 } // namespace hexlod::server
