@@ -174,6 +174,7 @@ async function start() {
         state,
         setCamera: (c) => controls.set(c),
         select: (picked) => select(picked),
+        tuning,
         pickAt: (x, y) => picker.pick(x, y, canvas),
         selectionRect: () => picker.screenRect(canvas),
         idle: () => loadTime !== null && streamer.queue.pending === 0 && streamer.queue.inFlight === 0,

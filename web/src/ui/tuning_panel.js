@@ -79,12 +79,18 @@ export class TuningPanel {
                     scope.value === 'building' ? { buildings: [building.id] }
                     : scope.value === 'cell' ? { cell: cell }
                     : { grammar: grammar.index };
-                error.textContent = '';
-                this.run(() => this.edits.edit(selector, { [p.name]: Number(slider.value) }), error);
+                this.post(selector, { [p.name]: Number(slider.value) });
             };
             row.append(text('span', p.name, 'name'), slider, shown);
             root.append(row);
         }
+    }
+
+    // What a slider does on release; a refused edit's reason goes under the sliders.
+    post(selector, params) {
+        const error = this.element.querySelector('#edit-error');
+        if (error) error.textContent = '';
+        return this.run(() => this.edits.edit(selector, params), error);
     }
 
     async run(action, errorElement) {
