@@ -4,31 +4,19 @@
 // with the tuning panel's slider, and requires that the pixels of the building's screen region
 // changed and that the stats show the batch's new version; a refused edit must show its reason.
 // Screenshots go to $HEXLOD_WEB_ARTIFACTS.
-//
-// WebGL without a GPU: chromium falls back to SwiftShader (ANGLE on its Vulkan device) under
-// --disable-gpu; --use-angle=swiftshader --enable-unsafe-swiftshader ask for it explicitly, since
-// newer builds refuse the silent fallback.
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import test from 'node:test';
 import { fileURLToPath } from 'node:url';
 
-import { chromium } from 'playwright-core';
+import { launchChromium, startServer } from './harness.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const webRoot = path.resolve(here, '..', 'dist');
 const binary = process.env.HEXLOD_BINARY;
 const configs = process.env.HEXLOD_CONFIGS_DIR ?? path.resolve(here, '..', '..', 'configs');
 const artifacts = process.env.HEXLOD_WEB_ARTIFACTS ?? path.join(os.tmpdir(), 'hexlod-web-artifacts');
-
-const CHROMIUM_ARGS = [
-    '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
-];
 
 // About 30 buildings of both grammars, no trees, a coarse LOD budget: few terminals, so a frame
 // stays well under a second on SwiftShader.
@@ -49,26 +37,6 @@ function writeScene(folder) {
     const file = path.join(folder, 'scene.json');
     fs.writeFileSync(file, JSON.stringify(scene, null, 1));
     return file;
-}
-
-function startServer(scene) {
-    const child = spawn(binary, ['serve', '--scene', scene, '--port', '0', '--web-root', webRoot], { stdio: ['ignore', 'pipe', 'pipe'] });
-    let log = '';
-    const url = new Promise((resolve, reject) => {
-        const timer = setTimeout(() => reject(new Error(`hexlod serve printed no URL in 30 s:\n${log}`)), 30000);
-        const take = (chunk) => {
-            log += chunk;
-            const m = log.match(/viewer at (http:\/\/[^\s]+\/)/);
-            if (m) {
-                clearTimeout(timer);
-                resolve(m[1]);
-            }
-        };
-        child.stdout.on('data', take);
-        child.stderr.on('data', take);
-        child.on('exit', (code) => reject(new Error(`hexlod serve exited with ${code}:\n${log}`)));
-    });
-    return { child, url, log: () => log };
 }
 
 // Share of pixels in `rect` whose colour moved by more than 24 (of 255) in any channel, decoded
@@ -95,18 +63,14 @@ async function changedShare(page, before, after, rect) {
 
 test('the viewer loads, moves, selects a building, tunes it and shows the edit', { timeout: 240000 }, async () => {
     assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
-    assert.ok(fs.existsSync(path.join(webRoot, 'viewer.js')), 'web/dist is not built: build the CMake target web');
     fs.mkdirSync(artifacts, { recursive: true });
     const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-browser-'));
-    const server = startServer(writeScene(folder));
-    const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-chromium-'));
+    const server = startServer(binary, writeScene(folder));
     let browser;
     try {
         const base = await server.url;
-        browser = await chromium.launchPersistentContext(profile, {
-            executablePath: '/usr/bin/chromium', headless: true, args: CHROMIUM_ARGS, viewport: { width: 800, height: 450 },
-        });
-        const page = browser.pages()[0] ?? (await browser.newPage());
+        browser = await launchChromium({ width: 800, height: 450 });
+        const page = browser.page;
         const pageErrors = [];
         page.on('pageerror', (e) => pageErrors.push(e.message));
         const shot = (name) => page.screenshot({ path: path.join(artifacts, name), timeout: 60000 });
@@ -216,8 +180,7 @@ test('the viewer loads, moves, selects a building, tunes it and shows the edit',
         );
     } finally {
         await browser?.close();
-        server.child.kill('SIGTERM');
-        fs.rmSync(profile, { recursive: true, force: true });
+        server.stop();
         fs.rmSync(folder, { recursive: true, force: true });
     }
 });

@@ -103,21 +103,14 @@ export function checksum64(bytes, seed = [0, 0]) {
                 v[2 * lane + 1] = rl;
             }
         }
-        rotl(v[0], v[1], 1);
-        hh = rh;
-        hl = rl;
-        rotl(v[2], v[3], 7);
-        add(hh, hl, rh, rl);
-        hh = rh;
-        hl = rl;
-        rotl(v[4], v[5], 12);
-        add(hh, hl, rh, rl);
-        hh = rh;
-        hl = rl;
-        rotl(v[6], v[7], 18);
-        add(hh, hl, rh, rl);
-        hh = rh;
-        hl = rl;
+        hh = 0;
+        hl = 0;
+        [1, 7, 12, 18].forEach((bits, lane) => {
+            rotl(v[2 * lane], v[2 * lane + 1], bits);
+            add(hh, hl, rh, rl);
+            hh = rh;
+            hl = rl;
+        });
     }
     const size = bytes.byteLength;
     add(hh, hl, Math.floor(size / 4294967296), size >>> 0);

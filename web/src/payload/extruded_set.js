@@ -3,16 +3,9 @@
 // parameter), decoded as grammar/src/extruded_set_codec.cpp does, with its validation. What
 // LOD0 draws: base volumes (footprint ring, base elevation, height), a wall material, and the
 // facade frames.
-import { PayloadError } from './payload_error.js';
-import {
-    asBytes,
-    checkFormat,
-    MAX_DECODED_BYTES,
-    readU64,
-    u64Number,
-    verifyChecksum,
-} from './terminal_set.js';
 import { hex64 } from './checksum64.js';
+import { MAX_DECODED_BYTES, openPayload, readU64, u64Number, unzigzagInPlace, verifyChecksum } from './format.js';
+import { PayloadError } from './payload_error.js';
 import { decompressFrame } from './zstd_frame.js';
 
 export const EXTRUDED_SET_VERSION = 1;
@@ -35,12 +28,7 @@ class ColumnReader {
     }
     deltaColumn(count) {
         const out = this.column(count);
-        let previous = 0;
-        for (let i = 0; i < count; ++i) {
-            const z = out[i];
-            previous = (previous + ((z >>> 1) ^ -(z & 1))) >>> 0;
-            out[i] = previous;
-        }
+        unzigzagInPlace(out);
         return out;
     }
 }
@@ -48,11 +36,7 @@ class ColumnReader {
 const asFloats = (words) => new Float32Array(words.buffer, words.byteOffset, words.length);
 
 export function decodeExtrudedSet(payload) {
-    const bytes = asBytes(payload);
-    if (bytes.length < EXTRUDED_HEADER_BYTES)
-        throw new PayloadError(`truncated header: ${bytes.length} of ${EXTRUDED_HEADER_BYTES} bytes`);
-    checkFormat(bytes, 'HXE1', 'an extruded set', EXTRUDED_SET_VERSION);
-    const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    const { bytes, view } = openPayload(payload, EXTRUDED_HEADER_BYTES, 'HXE1', 'an extruded set', EXTRUDED_SET_VERSION);
     const p = view.getUint32(28, true);
     const nb = view.getUint32(72, true), nv = view.getUint32(76, true), ne = view.getUint32(80, true);
     const bodyBytes = u64Number(readU64(view, 88));

@@ -3,7 +3,8 @@
 // XORed with its run's shape id), decoded back into 32-byte records exactly as
 // grammar/src/terminal_set_codec.cpp does, with the same validation: a payload this rejects,
 // the C++ decoder rejects too, and the other way round.
-import { checksum64, hex64 } from './checksum64.js';
+import { hex64 } from './checksum64.js';
+import { MAX_DECODED_BYTES, openPayload, readU64, u64Number, unzigzagInPlace, verifyChecksum } from './format.js';
 import { PayloadError } from './payload_error.js';
 import { decompressFrame } from './zstd_frame.js';
 
@@ -11,60 +12,9 @@ export const TERMINAL_SET_VERSION = 1;
 export const TERMINAL_HEADER_BYTES = 92;
 const MAX_RECORDS = 2 ** 27;
 const MAX_SHAPES = 65536;
-// A viewer-side cap on one decoded body: the format allows 4 GiB, a browser tab does not.
-export const MAX_DECODED_BYTES = 512 * 1024 * 1024;
-
-export function asBytes(payload) {
-    if (payload instanceof Uint8Array) return payload;
-    if (payload instanceof ArrayBuffer) return new Uint8Array(payload);
-    throw new PayloadError('payload must be an ArrayBuffer or a Uint8Array');
-}
-
-export function readU64(view, at) {
-    return [view.getUint32(at + 4, true), view.getUint32(at, true)];
-}
-
-// A u64 count as a Number, or Infinity when it is beyond 2^53 (every limit is far below).
-export function u64Number([h, l]) {
-    return h >= 0x200000 ? Infinity : h * 4294967296 + l;
-}
-
-function checkMagic(bytes, magic, what) {
-    for (let i = 0; i < 4; ++i)
-        if (bytes[i] !== magic.charCodeAt(i)) throw new PayloadError(`not ${what} (bad magic)`);
-}
-
-// Shared by both formats: magic, version and the covered-header checksum over the body.
-export function checkFormat(bytes, magic, what, version) {
-    checkMagic(bytes, magic, what);
-    const found = new DataView(bytes.buffer, bytes.byteOffset, 8).getUint32(4, true);
-    if (found !== version)
-        throw new PayloadError(`unsupported ${what.replace(/^an? /, '')} version ${found} (this viewer reads ${version})`);
-}
-
-export function verifyChecksum(bytes, coveredEnd, body) {
-    const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-    const stored = readU64(view, 8);
-    const computed = checksum64(body, checksum64(bytes.subarray(16, coveredEnd)));
-    if (computed[0] !== stored[0] || computed[1] !== stored[1]) throw new PayloadError('checksum mismatch');
-    return hex64(stored);
-}
-
-function unzigzagInPlace(column) {
-    let previous = 0;
-    for (let i = 0; i < column.length; ++i) {
-        const z = column[i];
-        previous = (previous + ((z >>> 1) ^ -(z & 1))) >>> 0;
-        column[i] = previous;
-    }
-}
 
 export function decodeTerminalSet(payload) {
-    const bytes = asBytes(payload);
-    if (bytes.length < TERMINAL_HEADER_BYTES)
-        throw new PayloadError(`truncated header: ${bytes.length} of ${TERMINAL_HEADER_BYTES} bytes`);
-    checkFormat(bytes, 'HXT1', 'a terminal set', TERMINAL_SET_VERSION);
-    const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+    const { bytes, view } = openPayload(payload, TERMINAL_HEADER_BYTES, 'HXT1', 'a terminal set', TERMINAL_SET_VERSION);
     const count = u64Number(readU64(view, 72));
     const bodyBytes = u64Number(readU64(view, 80));
     const shapes = view.getUint32(88, true);

@@ -56,7 +56,10 @@ export class TerminalBatch {
         }
         this.counts = { 4: n, 3: 0, 2: 0, culled: 0 };
         this.lastCamera = null;
-        this.gpuBytes = this.matrices.byteLength * (impostors ? 2 : 1);
+        this.sorted = this.runs.some((r) => r.lod3);
+        this.gpuBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
+        // Without impostors the lists never change: the instance buffers hold all there is.
+        if (!this.sorted) this.matrices = this.frames = this.sizes = null;
     }
 
     makeRun(shape, first, count, library, material, impostors) {
@@ -83,7 +86,7 @@ export class TerminalBatch {
 
     // `camera`: the camera position relative to this batch's cell origin (doubles).
     updateLod(camera, distances) {
-        if (!this.runs.some((r) => r.lod3)) return;
+        if (!this.sorted) return;
         if (this.lastCamera) {
             const moved = Math.hypot(camera[0] - this.lastCamera[0], camera[1] - this.lastCamera[1], camera[2] - this.lastCamera[2]);
             if (moved < Math.max(0.5, 0.02 * distances.lod3)) return;
