@@ -3,12 +3,13 @@
 // time), the frame rate over a few seconds of it, and a street-level walk of W seconds at
 // walking speed through the middle of the city (bytes and requests it costs, frame rate). The
 // walk is paced by the clock, not by frames, so a slow software renderer walks as far.
-//   node web/bench/walk.mjs HEXLOD_BINARY SCENE [WALK_SECONDS] [WIDTHxHEIGHT]
+//   node web/bench/walk.mjs HEXLOD_BINARY SCENE [WALK_SECONDS] [WIDTHxHEIGHT] [VIEWER_QUERY]
+// VIEWER_QUERY is added to the viewer's URL, e.g. 'camera=0,-400,1.7,90,0' for a street-level opening view.
 import { launchChromium, startServer } from '../test-browser/harness.mjs';
 
-const [binary, scene, walkArg = '20', size = '960x540'] = process.argv.slice(2);
+const [binary, scene, walkArg = '20', size = '960x540', query = ''] = process.argv.slice(2);
 if (!binary || !scene) {
-    console.error('usage: node web/bench/walk.mjs HEXLOD_BINARY SCENE [WALK_SECONDS] [WIDTHxHEIGHT]');
+    console.error('usage: node web/bench/walk.mjs HEXLOD_BINARY SCENE [WALK_SECONDS] [WIDTHxHEIGHT] [VIEWER_QUERY]');
     process.exit(2);
 }
 const [width, height] = size.split('x').map(Number);
@@ -31,7 +32,7 @@ const fpsOver = async (ms) => {
 try {
     const base = await server.url;
     const t0 = Date.now();
-    await page.goto(`${base}?aa=0`);
+    await page.goto(`${base}?aa=0${query ? `&${query}` : ''}`);
     await page.waitForFunction(() => window.hexlod?.idle(), null, { timeout: 600000, polling: 500 });
     const opening = await state();
     const load = { seconds: (Date.now() - t0) / 1000, viewer_seconds: opening.loadTime, bytes: opening.traffic.bytes, requests: opening.traffic.requests };
@@ -57,7 +58,7 @@ try {
     await page.evaluate(() => clearInterval(window.hexlod.walkTimer));
     const after = await state();
     console.log(JSON.stringify({
-        scene, viewport: size,
+        scene, viewport: size, query,
         opening: { ...load, fps: openingFps, cells: opening.streamer.cells, terminals, cache_mib: opening.cache.bytes / 1048576 },
         walk: {
             seconds: walkSeconds, metres: Math.hypot(after.position[0] - before.position[0], after.position[1] - before.position[1]),

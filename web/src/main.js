@@ -107,10 +107,15 @@ async function start() {
         tuning.select(picked);
         outlineSelection();
     }
+    // Outlines the selected building from the extruded set its cell draws, again whenever that
+    // changes (an edit's new version arrived).
+    let outlined = null;
     function outlineSelection() {
         const cell = selection?.cell && streamer.cells.find((c) => c.q === selection.cell[0] && c.r === selection.cell[1]);
         const batch = cell?.batches.find((b) => b.grammar === selection.grammar);
         const url = batch?.shown.extruded;
+        if (outlined && outlined.url === url && outlined.selection === selection) return;
+        outlined = { url, selection };
         const value = url ? streamer.cache.get(url) : null;
         picker.outlineBuilding(selection?.building, cell ? world.cellGroup(cell) : null, value?.set, cell?.origin);
     }
@@ -131,10 +136,10 @@ async function start() {
         controls.update(dt);
         const view = controls.view(canvas.clientHeight);
         if (now - lastStream > 50) {
-            world.render(view); // places the camera for the frustum the streamer tests against
+            world.place(view);
             streamer.update(view, world.camera);
             lastStream = now;
-            if (selection && !picker.selectedBox) outlineSelection();
+            if (selection) outlineSelection();
         }
         world.render(view);
         stats.frame(now);

@@ -14,7 +14,7 @@ import { IMPOSTOR_VIEWS_GLSL } from './impostor_views.js';
 const VERTEX = /* glsl */ `
 uniform vec3 nominal;
 uniform vec4 sphere;       // centre xyz, radius (shape space)
-uniform vec4 layout;       // grid, view resolution, padding, central view
+uniform vec4 atlasLayout;       // grid, view resolution, padding, central view
 uniform float lod;         // 2 or 3
 uniform vec3 sunDirection; // world
 flat out vec4 vViews;
@@ -24,7 +24,7 @@ out vec3 vSun;             // the sun in shape space
 ${IMPOSTOR_VIEWS_GLSL}
 vec2 viewUv(float view, vec3 q) {
     vec3 right, up;
-    impostorBasis(impostorViewDirection(view, layout.x), right, up);
+    impostorBasis(impostorViewDirection(view, atlasLayout.x), right, up);
     return vec2(dot(q, right), dot(q, up));
 }
 void main() {
@@ -34,12 +34,12 @@ void main() {
     mat3 worldToShape = inverse(linear);
     vec3 centre = (shapeToWorld * vec4(sphere.xyz, 1.0)).xyz;
     vec3 toCamera = normalize(worldToShape * (cameraPosition - centre));
-    float grid = layout.x;
+    float grid = atlasLayout.x;
     vec3 forward;
     if (lod < 2.5) {
-        vViews = vec4(layout.w, layout.w, layout.w, layout.w);
+        vViews = vec4(atlasLayout.w, atlasLayout.w, atlasLayout.w, atlasLayout.w);
         vWeights = vec4(1.0, 0.0, 0.0, 0.0);
-        forward = impostorViewDirection(layout.w, grid);
+        forward = impostorViewDirection(atlasLayout.w, grid);
     } else {
         vec2 g = impostorGridPosition(toCamera, grid);
         vec2 base = clamp(floor(g), vec2(0.0), vec2(grid - 2.0));
@@ -66,7 +66,7 @@ void main() {
 const FRAGMENT = /* glsl */ `
 uniform sampler2D albedoAtlas;
 uniform sampler2D normalAtlas;
-uniform vec4 layout;
+uniform vec4 atlasLayout;
 uniform vec3 sunColour;
 uniform vec3 ambientColour;
 flat in vec4 vViews;
@@ -74,7 +74,7 @@ in vec4 vWeights;
 in vec2 vUv0, vUv1, vUv2, vUv3;
 in vec3 vSun;
 vec2 atlasUv(float view, vec2 uv) {
-    float grid = layout.x, resolution = layout.y, padding = layout.z;
+    float grid = atlasLayout.x, resolution = atlasLayout.y, padding = atlasLayout.z;
     float inner = resolution - 2.0 * padding;
     vec2 texel = padding + vec2(uv.x * 0.5 + 0.5, 0.5 - uv.y * 0.5) * inner - 0.5;
     texel = clamp(texel, vec2(padding), vec2(padding + inner - 1.0));
@@ -164,7 +164,7 @@ export class ImpostorSet {
             uniforms: {
                 nominal: { value: new THREE.Vector3(...atlas.nominal) },
                 sphere: { value: new THREE.Vector4(...imp.centre, imp.radius) },
-                layout: { value: new THREE.Vector4(grid, view_resolution, padding, central_view) },
+                atlasLayout: { value: new THREE.Vector4(grid, view_resolution, padding, central_view) },
                 lod: { value: lod },
                 albedoAtlas: { value: atlas.albedo },
                 normalAtlas: { value: atlas.normal },

@@ -54,8 +54,9 @@ export class World {
         this.camera.updateProjectionMatrix();
     }
 
-    // `view`: {position: [x, y, z] doubles, forward: [x, y, z], near, fovY}.
-    render(view) {
+    // `view`: {position: [x, y, z] doubles, forward: [x, y, z], near, fovY}. Places the camera and
+    // every cell group for it (the streamer's frustum test needs the camera before a frame).
+    place(view) {
         const [cx, cy, cz] = view.position;
         this.cameraPosition = view.position;
         this.camera.position.set(0, 0, 0);
@@ -67,6 +68,11 @@ export class World {
             group.position.set(origin[0] - cx, origin[1] - cy, origin[2] - cz);
         // The ground follows the camera sideways, so its float positions stay small too.
         this.ground.position.set(0, 0, this.groundZ - cz - 0.02);
+        this.camera.updateMatrixWorld();
+    }
+
+    render(view) {
+        this.place(view);
         this.renderer.render(this.scene, this.camera);
     }
 }
