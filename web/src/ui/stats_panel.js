@@ -21,7 +21,7 @@ export class StatsPanel {
 
     show(s) {
         const lines = [
-            `fps ${this.fps.toFixed(1)}   mode ${s.mode}   speed ${s.speed.toFixed(1)} m/s`,
+            `fps ${this.fps.toFixed(1)}   mode ${s.mode}   speed ${s.speed.toFixed(1)} m/s   ${s.events}`,
             `camera ${s.position.map((v) => v.toFixed(1)).join(', ')}`,
             `cells in view ${s.streamer.visible}: LOD0 (extruded) ${s.streamer.cells.extruded}, terminal sets ${s.streamer.cells.terminals}`,
             `terminals drawn: LOD4 ${s.streamer.terminals[4]}, LOD3 ${s.streamer.terminals[3]}, LOD2 ${s.streamer.terminals[2]}`,
