@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package hexlod needs to build, test and fuzz, and the npm packages
-# of the test tools (the Khronos glTF validator in tests/gltf). Idempotent: apt-get skips what
-# is already there, npm ci runs only when tests/gltf/package-lock.json is newer than the install.
+# of the web viewer (web/: three.js, fzstd, esbuild, playwright-core) and of the test tools (the
+# Khronos glTF validator in tests/gltf). Idempotent: apt-get skips what is already there, npm ci
+# runs only where a package-lock.json is newer than its install. The browser tests drive
+# Debian's chromium; playwright-core never downloads a browser of its own.
 set -euo pipefail
 
 packages=(
@@ -15,6 +17,7 @@ packages=(
     googletest libgtest-dev libbenchmark-dev
     clang-14 libclang-rt-14-dev clang-format
     wrk curl python3
+    chromium
 )
 
 run_as_root() {
@@ -25,7 +28,7 @@ missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-# Node and npm run the glTF validator; Debian's packages serve where none is installed.
+# Node and npm build the viewer and run the glTF validator; Debian's packages serve where none is installed.
 command -v npm >/dev/null 2>&1 || missing+=(nodejs npm)
 if [ ${#missing[@]} -eq 0 ]; then
     echo "install-deps: all ${#packages[@]} packages present"
@@ -39,10 +42,15 @@ else
     fi
 fi
 
-gltf="$(dirname "$0")/../tests/gltf"
-if [ ! -f "$gltf/node_modules/.package-lock.json" ] || [ "$gltf/package-lock.json" -nt "$gltf/node_modules/.package-lock.json" ]; then
-    echo "install-deps: npm ci in tests/gltf (gltf-validator)"
-    (cd "$gltf" && npm ci --no-audit --no-fund)
-else
-    echo "install-deps: tests/gltf npm packages present"
-fi
+npm_ci() {
+    local folder="$1" what="$2"
+    if [ ! -f "$folder/node_modules/.package-lock.json" ] || [ "$folder/package-lock.json" -nt "$folder/node_modules/.package-lock.json" ]; then
+        echo "install-deps: npm ci in $what"
+        (cd "$folder" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund)
+    else
+        echo "install-deps: $what npm packages present"
+    fi
+}
+root="$(dirname "$0")/.."
+npm_ci "$root/tests/gltf" "tests/gltf (gltf-validator)"
+npm_ci "$root/web" "web (three, fzstd, esbuild, playwright-core)"

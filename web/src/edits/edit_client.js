@@ -1,0 +1,54 @@
+// Edit-in-place tuning over the API: POST /api/v1/edits (a selector and parameter values),
+// POST /api/v1/edits/undo, and the change events of /api/v1/events (Server-Sent Events). An
+// edit reply and its event carry the same `changed` list (new key, version and URLs per
+// batch); whichever comes first is applied and the other is a no-op, since a batch only ever
+// moves to a higher version. A `reset` event, or a `hello` whose seq differs from the index's,
+// means events were missed: the cell index is fetched again.
+import { postJson } from '../api.js';
+
+export class EditClient {
+    constructor({ onChanged, onReset, onStatus }) {
+        this.onChanged = onChanged;
+        this.onReset = onReset;
+        this.onStatus = onStatus;
+        this.indexSeq = 0;
+        this.lastEvent = null;
+    }
+
+    connect() {
+        this.source = new EventSource('/api/v1/events');
+        this.source.addEventListener('hello', (e) => {
+            const hello = JSON.parse(e.data);
+            this.onStatus('events: connected');
+            if (hello.seq !== this.indexSeq) this.onReset();
+        });
+        for (const type of ['edit', 'undo']) {
+            this.source.addEventListener(type, (e) => {
+                const event = JSON.parse(e.data);
+                this.lastEvent = { type, seq: event.seq, at: performance.now() };
+                this.indexSeq = Math.max(this.indexSeq, event.seq);
+                this.onChanged(event.changed, event);
+            });
+        }
+        this.source.addEventListener('reset', () => this.onReset());
+        this.source.onerror = () => this.onStatus('events: reconnecting');
+    }
+
+    // `selector`: {buildings: [id]} | {cell: [q, r]} | {grammar: name or index}. Throws ApiError
+    // (with the service's reason and field) when the edit is refused.
+    async edit(selector, params, comment) {
+        const body = { selector, params };
+        if (comment) body.comment = comment;
+        const reply = await postJson('/api/v1/edits', body);
+        this.indexSeq = Math.max(this.indexSeq, reply.seq);
+        this.onChanged(reply.changed, reply);
+        return reply;
+    }
+
+    async undo() {
+        const reply = await postJson('/api/v1/edits/undo', {});
+        this.indexSeq = Math.max(this.indexSeq, reply.seq);
+        this.onChanged(reply.changed, reply);
+        return reply;
+    }
+}

@@ -1,0 +1,192 @@
+// The hexlod browser viewer: loads the scene summary and the cell index, then every frame moves
+// the camera, lets the streamer decide and fetch what each cell needs, renders camera-relative
+// and refreshes the panels. Edits come back as change events and re-render the cells they
+// touched. `window.hexlod` exposes the state for tests and the console.
+import { getJson, traffic } from './api.js';
+import { CameraControls } from './camera/controls.js';
+import { EditClient } from './edits/edit_client.js';
+import { makeExtrudedMaterial } from './render/extruded_mesh.js';
+import { ImpostorSet } from './render/impostors.js';
+import { ShapeLibrary } from './render/shape_library.js';
+import { World } from './render/world.js';
+import { Streamer } from './stream/streamer.js';
+import { showAttribution } from './ui/attribution.js';
+import { Messages } from './ui/messages.js';
+import { Picker } from './ui/picker.js';
+import { StatsPanel } from './ui/stats_panel.js';
+import { TuningPanel } from './ui/tuning_panel.js';
+import * as THREE from 'three';
+
+const params = new URLSearchParams(location.search);
+const messages = new Messages(document.getElementById('messages'));
+const stats = new StatsPanel(document.getElementById('stats'));
+const canvas = document.getElementById('view');
+
+// The opening view: above the south of the city, looking north over it, unless ?camera=x,y,z,yaw,pitch (degrees).
+function openingCamera(cells) {
+    const given = params.get('camera')?.split(',').map(Number);
+    if (given?.length === 5 && given.every(Number.isFinite))
+        return { position: given.slice(0, 3), yaw: (given[3] * Math.PI) / 180, pitch: (given[4] * Math.PI) / 180 };
+    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
+    for (const c of cells)
+        for (let i = 0; i < 3; ++i) {
+            min[i] = Math.min(min[i], c.bounds.min[i]);
+            max[i] = Math.max(max[i], c.bounds.max[i]);
+        }
+    if (!cells.length) return { position: [0, -100, 50], yaw: Math.PI / 2, pitch: -0.3 };
+    const centre = [(min[0] + max[0]) / 2, (min[1] + max[1]) / 2, min[2]];
+    const extent = Math.max(max[0] - min[0], max[1] - min[1], 50);
+    const position = [centre[0], centre[1] - 0.75 * extent, centre[2] + 0.35 * extent];
+    return { position, yaw: Math.PI / 2, pitch: -Math.atan2(0.35 * extent, 0.75 * extent) };
+}
+
+async function start() {
+    const scene = await getJson('/api/v1/scene');
+    let index = await getJson('/api/v1/cells');
+    document.title = `hexlod: ${scene.name}`;
+    showAttribution(document.getElementById('attribution'), scene);
+    const world = new World(canvas, { antialias: params.get('aa') !== '0' });
+    const capabilities = scene.capabilities ?? {};
+    if (!capabilities.terminal_meshes) messages.add('terminal meshes are not served by this service: LOD4 draws stand-in quads', 'notice');
+    if (!capabilities.impostors) messages.add('impostors are not served by this service: every terminal is drawn at LOD4', 'notice');
+    const libraries = {};
+    for (const g of scene.grammars) libraries[g.index] = new ShapeLibrary(g, { meshes: !!capabilities.terminal_meshes });
+    const impostors = new ImpostorSet(scene, world.lighting);
+    const terminal = new THREE.MeshLambertMaterial({ vertexColors: true });
+    const materials = { extruded: makeExtrudedMaterial(), backing: new THREE.MeshLambertMaterial({ vertexColors: true }), terminal };
+    const budgetMiB = Number(params.get('budget') ?? 384);
+    const streamer = new Streamer({
+        scene,
+        world,
+        libraries,
+        impostors,
+        materials,
+        budgetBytes: budgetMiB * 1024 * 1024,
+        concurrency: Number(params.get('concurrency') ?? 6),
+        onError: (text) => messages.add(text),
+        onStale: () => reloadIndex(),
+    });
+    streamer.setIndex(index);
+
+    const groundAt = (p) => {
+        const cell = streamer.cells.find((c) => p[0] >= c.bounds.min[0] && p[0] <= c.bounds.max[0] && p[1] >= c.bounds.min[1] && p[1] <= c.bounds.max[1]);
+        return cell ? cell.origin[2] : world.groundZ;
+    };
+    world.groundZ = streamer.cells.length ? Math.min(...streamer.cells.map((c) => c.origin[2])) : 0;
+    const controls = new CameraControls(canvas, { ...openingCamera(index.cells), groundAt });
+    if (params.get('mode') === 'walk') controls.setMode('walk');
+
+    let reloading = null;
+    async function reloadIndex() {
+        if (reloading) return reloading;
+        reloading = getJson('/api/v1/cells')
+            .then((fresh) => {
+                index = fresh;
+                streamer.setIndex(fresh);
+                edits.indexSeq = fresh.seq;
+            })
+            .catch((e) => messages.add(`cell index: ${e.message}`))
+            .finally(() => (reloading = null));
+        return reloading;
+    }
+    const edits = new EditClient({
+        onChanged: (changed) => streamer.applyChanged(changed),
+        onReset: () => reloadIndex(),
+        onStatus: (s) => (eventStatus = s),
+    });
+    let eventStatus = 'events: connecting';
+    edits.indexSeq = index.seq;
+    edits.connect();
+
+    const picker = new Picker(world, scene);
+    const tuning = new TuningPanel(document.getElementById('tuning'), { scene, edits, messages });
+    tuning.select(null);
+    let selection = null;
+    function select(picked) {
+        selection = picked;
+        tuning.select(picked);
+        outlineSelection();
+    }
+    // Outlines the selected building from the extruded set its cell draws, again whenever that
+    // changes (an edit's new version arrived).
+    let outlined = null;
+    function outlineSelection() {
+        const cell = selection?.cell && streamer.cells.find((c) => c.q === selection.cell[0] && c.r === selection.cell[1]);
+        const batch = cell?.batches.find((b) => b.grammar === selection.grammar);
+        const url = batch?.shown.extruded;
+        if (outlined && outlined.url === url && outlined.selection === selection) return;
+        outlined = { url, selection };
+        const value = url ? streamer.cache.get(url) : null;
+        picker.outlineBuilding(selection?.building, cell ? world.cellGroup(cell) : null, value?.set, cell?.origin);
+    }
+    canvas.addEventListener('pointerup', (e) => {
+        if (controls.dragged > 4) return;
+        select(picker.pick(e.clientX, e.clientY, canvas));
+    });
+
+    const resize = () => world.resize(canvas.clientWidth, canvas.clientHeight);
+    window.addEventListener('resize', resize);
+    resize();
+
+    const startedAt = performance.now();
+    let loadTime = null, last = performance.now(), lastStats = 0, lastStream = 0;
+    function frame(now) {
+        const dt = Math.min((now - last) / 1000, 0.1);
+        last = now;
+        controls.update(dt);
+        const view = controls.view(canvas.clientHeight);
+        if (now - lastStream > 50) {
+            world.place(view);
+            streamer.update(view, world.camera);
+            lastStream = now;
+            if (selection) outlineSelection();
+        }
+        world.render(view);
+        stats.frame(now);
+        if (loadTime === null && streamer.queue.pending === 0 && streamer.cache.size > 0) loadTime = (now - startedAt) / 1000;
+        if (now - lastStats > 250) {
+            lastStats = now;
+            stats.show(state());
+        }
+        requestAnimationFrame(frame);
+    }
+    function state() {
+        return {
+            mode: controls.mode,
+            speed: controls.speed,
+            position: controls.position,
+            streamer: streamer.stats,
+            traffic: { ...traffic },
+            cache: { entries: streamer.cache.size, bytes: streamer.cache.bytes, budget: streamer.cache.budget, evictions: streamer.cache.evictions },
+            pending: streamer.queue.pending,
+            inFlight: streamer.queue.inFlight,
+            aborted: streamer.queue.aborted,
+            meshes: capabilities.terminal_meshes ? Object.values(libraries).map((l) => l.status).join(', ') : 'stand-ins (not served: capabilities.terminal_meshes is false)',
+            impostors: capabilities.impostors ? impostors.status : 'off (not served: capabilities.impostors is false)',
+            loadTime,
+            versions: streamer.versions(selection?.cell && streamer.cells.find((c) => c.q === selection.cell[0] && c.r === selection.cell[1])),
+            events: eventStatus,
+            fps: stats.fps,
+        };
+    }
+    requestAnimationFrame(frame);
+
+    window.hexlod = {
+        scene,
+        streamer,
+        controls,
+        world,
+        state,
+        setCamera: (c) => controls.set(c),
+        select: (picked) => select(picked),
+        tuning,
+        pickAt: (x, y) => picker.pick(x, y, canvas),
+        selectionRect: () => picker.screenRect(canvas),
+        idle: () => loadTime !== null && streamer.queue.pending === 0 && streamer.queue.inFlight === 0,
+    };
+}
+
+start().catch((e) => {
+    messages.add(`the viewer could not start: ${e.message}`);
+    console.error(e);
+});

@@ -1,0 +1,106 @@
+// LOD0 from an extruded set: every building's base volume as a prism over its footprint ring
+// (walls from the base elevation up by its height, a flat roof), in cell-local float
+// coordinates (the cell group carries the camera-relative offset). Walls take the building's
+// wall-material colour (the palette of render/src/base_volume_mesh.cpp) and a procedural
+// window pattern whose storey height and bay width come from the building's own parameters
+// (floor_h, and tile_w or module_w when its grammar declares them), so a parameter edit shows
+// even at LOD0. Terminal cells draw the same volumes inset behind their terminals, without
+// windows, so no gap in the facade shows the sky.
+import * as THREE from 'three';
+
+import { insetRing } from './polygon_inset.js';
+
+const WALL_COLOURS = [
+    [150, 124, 96], [120, 60, 40], [170, 160, 140], [90, 96, 104],
+    [140, 110, 80], [110, 100, 90], [160, 140, 120], [70, 70, 75],
+].map((c) => c.map((v) => (v / 255) ** 2.2)); // sRGB palette to linear
+const ROOF_COLOUR = [60, 58, 56].map((v) => (v / 255) ** 2.2);
+
+function parameterColumn(set, grammar, names) {
+    for (const name of names) {
+        const j = grammar.parameters.findIndex((p) => p.name === name);
+        if (j >= 0 && j < set.parametersPerBuilding) return set.parameters[j];
+    }
+    return null;
+}
+
+// {geometry, buildingOfTriangle}: one triangle list for the whole batch.
+export function buildExtrudedGeometry(set, grammar, { inset = 0, windows = true } = {}) {
+    const b = set.buildings;
+    const floorH = parameterColumn(set, grammar, ['floor_h']);
+    const bay = parameterColumn(set, grammar, ['tile_w', 'module_w']);
+    const positions = [], normals = [], colours = [], facade = [], grid = [], triangleBuilding = [];
+    const push = (x, y, z, n, c, u, v, wall, i) => {
+        positions.push(x, y, z);
+        normals.push(n[0], n[1], n[2]);
+        colours.push(c[0], c[1], c[2]);
+        facade.push(u, v, wall);
+        grid.push(floorH ? floorH[i] : 3, bay ? bay[i] : 3);
+    };
+    for (let i = 0; i < b.count; ++i) {
+        const n = b.vertexCount[i];
+        if (n < 3 || !(b.height[i] > 0)) continue;
+        let ring = [];
+        for (let k = 0; k < n; ++k)
+            ring.push([set.footprints.x[b.firstVertex[i] + k], set.footprints.y[b.firstVertex[i] + k]]);
+        if (inset > 0) ring = insetRing(ring, inset);
+        if (ring.length < 3) continue;
+        const z0 = b.baseElevation[i], z1 = z0 + b.height[i];
+        const wall = WALL_COLOURS[b.wallMaterial[i] % 8];
+        const id = b.id[i];
+        let along = 0;
+        for (let k = 0; k < ring.length; ++k) {
+            const [ax, ay] = ring[k], [bx, by] = ring[(k + 1) % ring.length];
+            const length = Math.hypot(bx - ax, by - ay);
+            if (!(length > 0)) continue;
+            const normal = [(by - ay) / length, -(bx - ax) / length, 0];
+            const w = windows ? 1 : 0;
+            // Two triangles, counter-clockwise seen from outside.
+            push(ax, ay, z0, normal, wall, along, 0, w, i);
+            push(bx, by, z0, normal, wall, along + length, 0, w, i);
+            push(bx, by, z1, normal, wall, along + length, z1 - z0, w, i);
+            push(ax, ay, z0, normal, wall, along, 0, w, i);
+            push(bx, by, z1, normal, wall, along + length, z1 - z0, w, i);
+            push(ax, ay, z1, normal, wall, along, z1 - z0, w, i);
+            triangleBuilding.push(id, id);
+            along += length;
+        }
+        const contour = ring.map(([x, y]) => new THREE.Vector2(x, y));
+        for (const [p, q, r] of THREE.ShapeUtils.triangulateShape(contour, [])) {
+            for (const k of [p, q, r]) push(ring[k][0], ring[k][1], z1, [0, 0, 1], ROOF_COLOUR, 0, 0, 0, i);
+            triangleBuilding.push(id);
+        }
+    }
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
+    geometry.setAttribute('normal', new THREE.Float32BufferAttribute(normals, 3));
+    geometry.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
+    geometry.setAttribute('facade', new THREE.Float32BufferAttribute(facade, 3));
+    geometry.setAttribute('windowGrid', new THREE.Float32BufferAttribute(grid, 2));
+    geometry.computeBoundingSphere();
+    return { geometry, buildingOfTriangle: Uint32Array.from(triangleBuilding) };
+}
+
+// Lambert walls with a window grid: a storey of floor_h, a bay of the bay width, a window in
+// the middle 55 % of each bay between sill and lintel, darker and a little bluish.
+export function makeExtrudedMaterial() {
+    const material = new THREE.MeshLambertMaterial({ vertexColors: true });
+    material.onBeforeCompile = (shader) => {
+        shader.vertexShader = shader.vertexShader
+            .replace('#include <common>', '#include <common>\nattribute vec3 facade;\nattribute vec2 windowGrid;\nvarying vec3 vFacade;\nvarying vec2 vWindowGrid;')
+            .replace('#include <begin_vertex>', '#include <begin_vertex>\nvFacade = facade;\nvWindowGrid = windowGrid;');
+        shader.fragmentShader = shader.fragmentShader
+            .replace('#include <common>', '#include <common>\nvarying vec3 vFacade;\nvarying vec2 vWindowGrid;')
+            .replace(
+                '#include <color_fragment>',
+                `#include <color_fragment>
+                if (vFacade.z > 0.5 && vFacade.y > 0.5 * vWindowGrid.x) {
+                    vec2 cell = vec2(vFacade.x / max(vWindowGrid.y, 0.5), vFacade.y / max(vWindowGrid.x, 0.5));
+                    vec2 f = fract(cell);
+                    float window = step(0.22, f.x) * step(f.x, 0.78) * step(0.3, f.y) * step(f.y, 0.82);
+                    diffuseColor.rgb = mix(diffuseColor.rgb, vec3(0.06, 0.08, 0.11), window * 0.85);
+                }`,
+            );
+    };
+    return material;
+}

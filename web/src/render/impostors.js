@@ -1,0 +1,192 @@
+// LOD3 and LOD2 of terminals whose shape has a baked impostor (scene.capabilities.impostors;
+// the atlases of /api/v1/impostors/...: albedo PNG, sRGB with coverage in alpha, and the
+// shape-space normal with depth PNG). An impostor instance is a quad over the shape's bounding
+// sphere (centre, radius, shape space at the nominal size) carried by the terminal's instance
+// matrix: LOD2 faces the central view and shows it; LOD3 faces the camera and blends the four
+// grid views around the camera's direction in shape space by their bilinear weights, each
+// sampled where the quad's point lies in that view's frame (the reconstruction of
+// impostor_views.glsl without its depth iterations). Coverage under one half is discarded
+// (alpha test, no sorting); normals light it with the scene's sun.
+import * as THREE from 'three';
+
+import { IMPOSTOR_VIEWS_GLSL } from './impostor_views.js';
+
+const VERTEX = /* glsl */ `
+uniform vec3 nominal;
+uniform vec4 sphere;       // centre xyz, radius (shape space)
+uniform vec4 atlasLayout;       // grid, view resolution, padding, central view
+uniform float lod;         // 2 or 3
+uniform vec3 sunDirection; // world
+flat out vec4 vViews;
+out vec4 vWeights;
+out vec2 vUv0, vUv1, vUv2, vUv3;
+out vec3 vSun;             // the sun in shape space
+${IMPOSTOR_VIEWS_GLSL}
+vec2 viewUv(float view, vec3 q) {
+    vec3 right, up;
+    impostorBasis(impostorViewDirection(view, atlasLayout.x), right, up);
+    return vec2(dot(q, right), dot(q, up));
+}
+void main() {
+    mat4 shapeToWorld = modelMatrix * instanceMatrix * mat4(vec4(1.0 / nominal.x, 0, 0, 0),
+        vec4(0, 1.0 / nominal.y, 0, 0), vec4(0, 0, 1.0 / max(nominal.z, 1e-6), 0), vec4(0, 0, 0, 1));
+    mat3 linear = mat3(shapeToWorld);
+    mat3 worldToShape = inverse(linear);
+    vec3 centre = (shapeToWorld * vec4(sphere.xyz, 1.0)).xyz;
+    vec3 toCamera = normalize(worldToShape * (cameraPosition - centre));
+    float grid = atlasLayout.x;
+    vec3 forward;
+    if (lod < 2.5) {
+        vViews = vec4(atlasLayout.w, atlasLayout.w, atlasLayout.w, atlasLayout.w);
+        vWeights = vec4(1.0, 0.0, 0.0, 0.0);
+        forward = impostorViewDirection(atlasLayout.w, grid);
+    } else {
+        vec2 g = impostorGridPosition(toCamera, grid);
+        vec2 base = clamp(floor(g), vec2(0.0), vec2(grid - 2.0));
+        vec2 f = clamp(g - base, 0.0, 1.0);
+        float v = base.y * grid + base.x;
+        vViews = vec4(v, v + 1.0, v + grid, v + grid + 1.0);
+        vWeights = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+        forward = toCamera;
+        forward.z = max(forward.z, 0.0);
+        forward = normalize(forward + vec3(0.0, 0.0, 1e-6));
+    }
+    vec3 right, up;
+    impostorBasis(forward, right, up);
+    vec3 q = position.x * right + position.y * up; // in radii, relative to the centre
+    vUv0 = viewUv(vViews.x, q);
+    vUv1 = viewUv(vViews.y, q);
+    vUv2 = viewUv(vViews.z, q);
+    vUv3 = viewUv(vViews.w, q);
+    vSun = normalize(worldToShape * sunDirection);
+    gl_Position = projectionMatrix * viewMatrix * shapeToWorld * vec4(sphere.xyz + sphere.w * q, 1.0);
+}
+`;
+
+const FRAGMENT = /* glsl */ `
+uniform sampler2D albedoAtlas;
+uniform sampler2D normalAtlas;
+uniform vec4 atlasLayout;
+uniform vec3 sunColour;
+uniform vec3 ambientColour;
+flat in vec4 vViews;
+in vec4 vWeights;
+in vec2 vUv0, vUv1, vUv2, vUv3;
+in vec3 vSun;
+vec2 atlasUv(float view, vec2 uv) {
+    float grid = atlasLayout.x, resolution = atlasLayout.y, padding = atlasLayout.z;
+    float inner = resolution - 2.0 * padding;
+    vec2 texel = padding + vec2(uv.x * 0.5 + 0.5, 0.5 - uv.y * 0.5) * inner - 0.5;
+    texel = clamp(texel, vec2(padding), vec2(padding + inner - 1.0));
+    vec2 tile = vec2(mod(view, grid), floor(view / grid)) * resolution;
+    return (tile + texel + 0.5) / (grid * resolution);
+}
+void accumulate(float view, vec2 uv, float weight, inout vec4 colour, inout vec3 normal) {
+    if (weight <= 0.0 || abs(uv.x) > 1.0 || abs(uv.y) > 1.0) return;
+    vec2 at = atlasUv(view, uv);
+    vec4 a = texture2D(albedoAtlas, at);
+    vec3 n = texture2D(normalAtlas, at).xyz * 2.0 - 1.0;
+    float w = weight * a.a;
+    colour += vec4(w * a.rgb, w);
+    normal += w * n;
+}
+void main() {
+    vec4 colour = vec4(0.0);
+    vec3 normal = vec3(0.0);
+    accumulate(vViews.x, vUv0, vWeights.x, colour, normal);
+    accumulate(vViews.y, vUv1, vWeights.y, colour, normal);
+    accumulate(vViews.z, vUv2, vWeights.z, colour, normal);
+    accumulate(vViews.w, vUv3, vWeights.w, colour, normal);
+    if (colour.a < 0.5) discard;
+    vec3 albedo = colour.rgb / colour.a;
+    vec3 n = length(normal) > 0.0 ? normalize(normal) : vec3(0.0, 0.0, 1.0);
+    gl_FragColor = vec4(albedo * (ambientColour + sunColour * max(dot(n, vSun), 0.0)), 1.0);
+    #include <colorspace_fragment>
+}
+`;
+
+function loadTexture(loader, url, srgb) {
+    return loader.loadAsync(url).then((texture) => {
+        texture.flipY = false; // row 0 of the image is the top row of the atlas, as in the bake
+        texture.generateMipmaps = false; // mips would bleed between tiles
+        texture.minFilter = THREE.LinearFilter;
+        texture.magFilter = THREE.LinearFilter;
+        texture.colorSpace = srgb ? THREE.SRGBColorSpace : THREE.NoColorSpace;
+        texture.needsUpdate = true;
+        return texture;
+    });
+}
+
+export class ImpostorSet {
+    constructor(scene, lighting) {
+        this.layout = scene.impostor_layout ?? null;
+        this.lighting = lighting;
+        this.atlases = new Map(); // "grammar/shape" -> atlas
+        this.failed = [];
+        this.enabled = !!scene.capabilities?.impostors && this.layout?.sphere === 'hemi-octahedral';
+        this.quad = new THREE.PlaneGeometry(2, 2);
+        this.isReady = false;
+        this.ready = (this.enabled ? this.load(scene) : Promise.resolve()).then(() => (this.isReady = true));
+    }
+
+    async load(scene) {
+        const loader = new THREE.TextureLoader();
+        const jobs = [];
+        for (const grammar of scene.grammars) {
+            for (const [i, shape] of (grammar.shapes ?? []).entries()) {
+                const imp = shape.impostor;
+                if (!imp?.albedo_url || !imp?.normal_url) continue;
+                const index = shape.index ?? shape.id ?? i;
+                const nominal = shape.nominal_size ?? [shape.width, shape.height, shape.depth];
+                jobs.push(
+                    Promise.all([loadTexture(loader, imp.albedo_url, true), loadTexture(loader, imp.normal_url, false)]).then(
+                        ([albedo, normal]) => this.atlases.set(`${grammar.index}/${index}`, { albedo, normal, nominal, impostor: imp, materials: {} }),
+                        (e) => this.failed.push(`${shape.name}: ${e?.message ?? 'could not load its atlas'}`),
+                    ),
+                );
+            }
+        }
+        await Promise.all(jobs);
+    }
+
+    atlasOf(grammar, shape) {
+        return this.enabled ? this.atlases.get(`${grammar}/${shape}`) ?? null : null;
+    }
+
+    material(atlas, lod) {
+        if (atlas.materials[lod]) return atlas.materials[lod];
+        const { grid, view_resolution, padding, central_view } = this.layout;
+        const imp = atlas.impostor;
+        const material = new THREE.ShaderMaterial({
+            // three.js compiles it as GLSL ES 3.00 (WebGL 2): flat varyings and inverse() exist.
+            vertexShader: VERTEX,
+            fragmentShader: FRAGMENT,
+            uniforms: {
+                nominal: { value: new THREE.Vector3(...atlas.nominal) },
+                sphere: { value: new THREE.Vector4(...imp.centre, imp.radius) },
+                atlasLayout: { value: new THREE.Vector4(grid, view_resolution, padding, central_view) },
+                lod: { value: lod },
+                albedoAtlas: { value: atlas.albedo },
+                normalAtlas: { value: atlas.normal },
+                sunDirection: { value: this.lighting.sunDirection },
+                sunColour: { value: this.lighting.sunColour },
+                ambientColour: { value: this.lighting.ambientColour },
+            },
+        });
+        atlas.materials[lod] = material;
+        return material;
+    }
+
+    makeMesh(atlas, lod, capacity) {
+        const mesh = new THREE.InstancedMesh(this.quad, this.material(atlas, lod), capacity);
+        mesh.frustumCulled = false;
+        mesh.raycast = () => {}; // picking hits the base volumes behind impostors
+        return mesh;
+    }
+
+    get status() {
+        if (!this.enabled) return 'off';
+        const failed = this.failed.length ? `, ${this.failed.length} failed` : '';
+        return `${this.atlases.size} atlases${failed}`;
+    }
+}

@@ -1,0 +1,135 @@
+// LOD4 to LOD2 of one terminal set: per shape, an InstancedMesh of the shape's unit-space mesh
+// (LOD4) and, when the shape has an impostor, instanced impostor quads for LOD3 and LOD2. Each
+// record becomes the instance matrix T·R·S of terminal_mesh.h: T its corner (cell-local), R
+// from its quaternion (4 x snorm16), S = (w, h, d) with d = depthRatio · min(w, h) (flat shapes
+// get a hair of depth so the matrix stays invertible for normals). With impostors, terminals
+// are re-sorted into the three lists by lod_policy.classifyTerminal whenever the camera has
+// moved enough for the decision to change (a CPU stand-in for the native renderer's GPU pass);
+// without them every terminal is LOD4 and the lists never change.
+import * as THREE from 'three';
+
+import { halfToFloat, quaternionAxes, snorm16ToFloat } from '../payload/record.js';
+import { classifyTerminal } from '../stream/lod_policy.js';
+
+const FLAT_DEPTH = 1e-3;
+
+export class TerminalBatch {
+    // `impostors`: an ImpostorSet (impostors.js) or null.
+    constructor(set, library, material, impostors) {
+        this.set = set;
+        this.group = new THREE.Group();
+        this.group.name = `terminals ${set.cell.q},${set.cell.r}/${set.grammar}`;
+        const n = set.count;
+        this.matrices = new Float32Array(16 * n);
+        this.frames = new Float32Array(13 * n); // corner xyz, axes (9), depth: for the LOD decision
+        this.sizes = new Float32Array(2 * n);
+        const q = [0, 0, 0, 0], axes = new Float64Array(9);
+        const w = set.records, p = set.positions;
+        for (let i = 0; i < n; ++i) {
+            const b = 8 * i;
+            q[0] = snorm16ToFloat(w[b + 4] & 0xffff);
+            q[1] = snorm16ToFloat(w[b + 4] >>> 16);
+            q[2] = snorm16ToFloat(w[b + 5] & 0xffff);
+            q[3] = snorm16ToFloat(w[b + 5] >>> 16);
+            quaternionAxes(q, axes);
+            const width = halfToFloat(w[b + 6] & 0xffff), height = halfToFloat(w[b + 6] >>> 16);
+            const depth = halfToFloat(w[b + 7] >>> 16) * Math.min(width, height);
+            const d = depth > 0 ? depth : FLAT_DEPTH * Math.max(Math.min(width, height), 1e-3);
+            const m = this.matrices, o = 16 * i;
+            m[o] = axes[0] * width; m[o + 1] = axes[1] * width; m[o + 2] = axes[2] * width;
+            m[o + 4] = axes[3] * height; m[o + 5] = axes[4] * height; m[o + 6] = axes[5] * height;
+            m[o + 8] = axes[6] * d; m[o + 9] = axes[7] * d; m[o + 10] = axes[8] * d;
+            m[o + 12] = p[b]; m[o + 13] = p[b + 1]; m[o + 14] = p[b + 2]; m[o + 15] = 1;
+            const f = this.frames, k = 13 * i;
+            f[k] = p[b]; f[k + 1] = p[b + 1]; f[k + 2] = p[b + 2];
+            for (let j = 0; j < 9; ++j) f[k + 3 + j] = axes[j];
+            f[k + 12] = depth;
+            this.sizes[2 * i] = width;
+            this.sizes[2 * i + 1] = height;
+        }
+        this.runs = [];
+        let first = 0;
+        for (let s = 0; s < set.countPerShape.length; ++s) {
+            const count = set.countPerShape[s];
+            if (count > 0) this.runs.push(this.makeRun(s, first, count, library, material, impostors));
+            first += count;
+        }
+        this.counts = { 4: n, 3: 0, 2: 0, culled: 0 };
+        this.lastCamera = null;
+        this.sorted = this.runs.some((r) => r.lod3);
+        this.gpuBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
+        // Without impostors the lists never change: the instance buffers hold all there is.
+        if (!this.sorted) this.matrices = this.frames = this.sizes = null;
+    }
+
+    makeRun(shape, first, count, library, material, impostors) {
+        const info = library.shape(shape);
+        const lod4 = new THREE.InstancedMesh(info?.geometry ?? library.shapes[0]?.geometry, material, count);
+        lod4.instanceMatrix.array.set(this.matrices.subarray(16 * first, 16 * (first + count)));
+        lod4.instanceMatrix.needsUpdate = true;
+        lod4.frustumCulled = false; // the cell's bounds decide visibility
+        lod4.userData.batch = this;
+        lod4.userData.records = null; // instance i is record first + i until re-sorted
+        lod4.userData.first = first;
+        this.group.add(lod4);
+        const run = { shape, first, count, lod4, lod3: null, lod2: null };
+        const atlas = impostors?.atlasOf(library.grammar.index, shape);
+        if (atlas) {
+            run.lod3 = impostors.makeMesh(atlas, 3, count);
+            run.lod2 = impostors.makeMesh(atlas, 2, count);
+            run.lod3.count = run.lod2.count = 0;
+            for (const mesh of [run.lod3, run.lod2]) this.group.add(mesh);
+            run.records = new Uint32Array(count); // record of each LOD4 instance
+        }
+        return run;
+    }
+
+    // `camera`: the camera position relative to this batch's cell origin (doubles).
+    updateLod(camera, distances) {
+        if (!this.sorted) return;
+        if (this.lastCamera) {
+            const moved = Math.hypot(camera[0] - this.lastCamera[0], camera[1] - this.lastCamera[1], camera[2] - this.lastCamera[2]);
+            if (moved < Math.max(0.5, 0.02 * distances.lod3)) return;
+        }
+        this.lastCamera = camera.slice();
+        const counts = { 4: 0, 3: 0, 2: 0, culled: 0 };
+        const corner = [0, 0, 0], axes = new Float64Array(9);
+        for (const run of this.runs) {
+            const lists = { 4: run.lod4, 3: run.lod3, 2: run.lod2 };
+            const filled = { 4: 0, 3: 0, 2: 0 };
+            for (let i = run.first; i < run.first + run.count; ++i) {
+                const f = this.frames, k = 13 * i;
+                corner[0] = f[k] - camera[0];
+                corner[1] = f[k + 1] - camera[1];
+                corner[2] = f[k + 2] - camera[2];
+                for (let j = 0; j < 9; ++j) axes[j] = f[k + 3 + j];
+                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3);
+                if (lod === 0) {
+                    ++counts.culled;
+                    continue;
+                }
+                const mesh = lists[lod];
+                mesh.instanceMatrix.array.set(this.matrices.subarray(16 * i, 16 * i + 16), 16 * filled[lod]);
+                if (lod === 4 && run.records) run.records[filled[4]] = i;
+                ++filled[lod];
+                ++counts[lod];
+            }
+            for (const lod of [4, 3, 2]) {
+                lists[lod].count = filled[lod];
+                lists[lod].instanceMatrix.needsUpdate = true;
+            }
+            run.lod4.userData.records = run.records ?? null;
+        }
+        this.counts = counts;
+    }
+
+    // The record index behind instance `instanceId` of a LOD4 mesh of this batch.
+    recordOf(mesh, instanceId) {
+        const records = mesh.userData.records;
+        return records ? records[instanceId] : mesh.userData.first + instanceId;
+    }
+
+    dispose() {
+        for (const run of this.runs) for (const mesh of [run.lod4, run.lod3, run.lod2]) mesh?.dispose();
+    }
+}

@@ -1,0 +1,69 @@
+// The LOD policy of the native renderer, for the browser (ARCHITECTURE.md §5; the rules of
+// cells/include/hexlod/cells/scheduler.h and lod/include/hexlod/lod/cull_shared.h, with the
+// numbers of the scene's LOD profile from /api/v1/scene):
+// - per cell, the 3D Tiles screen-space error of its extruded set,
+//   sse = geometric_error[1] * viewport_height / (distance * 2 tan(fov_y / 2)), distance from the
+//   camera to the nearest point of the cell's bounds box (inside it: infinite); terminal sets
+//   above max_sse * (1 + hysteresis), the extruded set below max_sse * (1 - hysteresis), the
+//   previous choice in between (every cell starts extruded);
+// - per terminal, by the distance to its scope centre: LOD4, LOD3 from the distance at which
+//   geometric_error[3] stays under max_sse, LOD2 from geometric_error[2]'s; a terminal whose
+//   camera is behind the plane its shape recedes to is culled (backface), and without
+//   impostors every visible terminal is LOD4.
+export const EXTRUDED = 'extruded';
+export const TERMINALS = 'terminals';
+
+export function screenSpaceError(geometricError, distance, viewportHeight, fovY) {
+    if (distance <= 0) return Infinity;
+    return (geometricError * viewportHeight) / (distance * 2 * Math.tan(fovY * 0.5));
+}
+
+// The distance from which a LOD of this geometric error stays under the profile's budget.
+export function lodDistance(geometricError, profile, fovY, viewportHeight) {
+    return (geometricError * viewportHeight) / (2 * Math.tan(0.5 * fovY) * profile.max_screen_space_error);
+}
+
+// Distance from point p to the box [min, max] (arrays of 3), 0 inside.
+export function distanceToBox(p, min, max) {
+    let sum = 0;
+    for (let i = 0; i < 3; ++i) {
+        const d = p[i] < min[i] ? min[i] - p[i] : p[i] > max[i] ? p[i] - max[i] : 0;
+        sum += d * d;
+    }
+    return Math.sqrt(sum);
+}
+
+export function nextCellLod(previous, sse, profile) {
+    const maxSse = profile.max_screen_space_error, band = profile.hysteresis;
+    if (sse > maxSse * (1 + band)) return TERMINALS;
+    if (sse < maxSse * (1 - band)) return EXTRUDED;
+    return previous;
+}
+
+// A cell's decision for this camera: {distance, sse, lod}.
+export function decideCell(previous, bounds, camera, profile) {
+    const distance = distanceToBox(camera.position, bounds.min, bounds.max);
+    const sse = screenSpaceError(profile.geometric_error[1], distance, camera.viewportHeight, camera.fovY);
+    return { distance, sse, lod: nextCellLod(previous ?? EXTRUDED, sse, profile) };
+}
+
+// The per-terminal distances for this camera: {lod3, lod2} in metres.
+export function terminalLodDistances(profile, camera) {
+    return {
+        lod3: lodDistance(profile.geometric_error[3], profile, camera.fovY, camera.viewportHeight),
+        lod2: lodDistance(profile.geometric_error[2], profile, camera.fovY, camera.viewportHeight),
+    };
+}
+
+// 0 (culled), 2, 3 or 4 for a terminal whose scope corner is at `corner` relative to the camera,
+// with scope axes X, Y, Z (from quaternionAxes: nine numbers), size (w, h) and depth d.
+export function classifyTerminal(corner, axes, w, h, d, distances, impostors) {
+    const cx = corner[0] + axes[0] * 0.5 * w + axes[3] * 0.5 * h;
+    const cy = corner[1] + axes[1] * 0.5 * w + axes[4] * 0.5 * h;
+    const cz = corner[2] + axes[2] * 0.5 * w + axes[5] * 0.5 * h;
+    const inFront = -(axes[6] * corner[0] + axes[7] * corner[1] + axes[8] * corner[2]);
+    if (inFront < -d) return 0;
+    if (!impostors) return 4;
+    const distance = Math.sqrt(cx * cx + cy * cy + cz * cz);
+    return distance >= distances.lod2 ? 2 : distance >= distances.lod3 ? 3 : 4;
+}

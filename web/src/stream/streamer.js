@@ -1,0 +1,183 @@
+// Per cell, what to fetch and what to draw (the browser's counterpart of cells::Scheduler):
+// every update the LOD policy decides each cell's LOD from the camera; cells in view (and those
+// within a cell's size of the camera) want their batches' extruded sets (LOD0) and, in terminal
+// cells, their terminal sets; the fetch queue gets them highest priority first (extruded sets
+// of cells in view, then terminal sets by screen-space error) and drops what is no longer
+// wanted. Until a wanted payload arrives a batch keeps drawing what it drew before (the old
+// version after an edit, the extruded set before its terminals), so nothing leaves a hole.
+// Decoded payloads and their GPU objects live in a byte-budgeted LRU.
+import * as THREE from 'three';
+
+import { getBinary } from '../api.js';
+import { decodeExtrudedSet } from '../payload/extruded_set.js';
+import { decodeTerminalSet } from '../payload/terminal_set.js';
+import { buildExtrudedGeometry } from '../render/extruded_mesh.js';
+import { TerminalBatch } from '../render/terminal_batch.js';
+import { ContentCache } from './content_cache.js';
+import { FetchQueue } from './fetch_queue.js';
+import { decideCell, EXTRUDED, lodDistance, TERMINALS, terminalLodDistances } from './lod_policy.js';
+
+const BACKING_INSET = 0.5; // metres: base volumes behind terminal facades, as the native renderer
+
+export class Streamer {
+    constructor({ scene, world, libraries, impostors, materials, budgetBytes, concurrency, onError, onStale }) {
+        this.scene = scene;
+        this.profile = scene.lod;
+        this.world = world;
+        this.libraries = libraries; // per grammar index: ShapeLibrary
+        this.impostors = impostors;
+        this.materials = materials; // {extruded, backing, terminal}
+        this.onError = onError;
+        this.cells = [];
+        this.lodOf = new Map(); // "q,r" -> LOD, kept across index reloads
+        this.cache = new ContentCache(budgetBytes, (value) => this.dispose(value));
+        this.queue = new FetchQueue({
+            concurrency,
+            load: (request, signal) => this.load(request, signal),
+            onLoaded: (request, value) => this.cache.put(request.url, value, value.set.byteSize),
+            onFailed: (request, error) => onError(`${request.url}: ${error.message ?? error}`),
+            onStale: () => onStale(),
+        });
+        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, decodeMs: 0 };
+        this.frustum = new THREE.Frustum();
+        this.box = new THREE.Box3();
+    }
+
+    setIndex(index) {
+        this.cells = index.cells.map((c) => ({
+            ...c,
+            id: `${c.q},${c.r}`,
+            batches: c.batches.map((b) => ({ ...b, shown: { extruded: null, terminal: null } })),
+        }));
+        this.seq = index.seq;
+    }
+
+    // The `changed` list of an edit reply or event: new keys, versions and URLs per batch.
+    applyChanged(changed) {
+        for (const c of changed) {
+            const cell = this.cells.find((x) => x.q === c.cell[0] && x.r === c.cell[1]);
+            const batch = cell?.batches.find((b) => b.grammar === c.grammar);
+            if (!batch || batch.version >= c.version) continue;
+            Object.assign(batch, { key: c.key, version: c.version, terminal_set: c.terminal_set, extruded_set: c.extruded_set });
+        }
+    }
+
+    async load(request, signal) {
+        const { bytes, version } = await getBinary(request.url, { signal });
+        const start = performance.now();
+        const set = request.kind === 'terminal' ? decodeTerminalSet(bytes) : decodeExtrudedSet(bytes);
+        this.stats.decodeMs += performance.now() - start;
+        return { kind: request.kind, set, version, grammar: request.grammar, wire: bytes.byteLength };
+    }
+
+    dispose(value) {
+        value.terminals?.dispose();
+        value.lod0?.geometry.dispose();
+        value.backing?.geometry.dispose();
+    }
+
+    grammar(index) {
+        return this.scene.grammars.find((g) => g.index === index);
+    }
+
+    // Builds (once) and returns the object a content entry is drawn with.
+    object(url, value, variant) {
+        if (value.kind === 'extruded') {
+            if (!value[variant]) {
+                const inset = variant === 'backing' ? BACKING_INSET : 0;
+                const { geometry, buildingOfTriangle } = buildExtrudedGeometry(value.set, this.grammar(value.set.grammar), { inset, windows: variant === 'lod0' });
+                const mesh = new THREE.Mesh(geometry, variant === 'lod0' ? this.materials.extruded : this.materials.backing);
+                mesh.userData = { buildingOfTriangle, grammar: value.set.grammar, version: value.version, kind: 'extruded' };
+                value[variant] = mesh;
+                this.cache.grow(url, geometry.getAttribute('position').count * 4 * 14);
+            }
+            return value[variant];
+        }
+        if (!value.terminals) {
+            const library = this.libraries[value.set.grammar];
+            value.terminals = new TerminalBatch(value.set, library, this.materials.terminal, this.impostors.enabled ? this.impostors : null);
+            this.cache.grow(url, value.terminals.gpuBytes);
+        }
+        return value.terminals.group;
+    }
+
+    // `view`: {position, forward, fovY, viewportHeight}; `camera`: the three.js camera at the origin.
+    update(view, camera) {
+        camera.updateMatrixWorld();
+        this.frustum.setFromProjectionMatrix(new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse));
+        const distances = terminalLodDistances(this.profile, view);
+        // Trees are terminals only near the camera: beyond LOD2's distance the native renderer draws
+        // them as billboards of their species' impostor, which this API does not serve.
+        const treeDistance = lodDistance(this.profile.geometric_error[2], this.profile, view.fovY, view.viewportHeight);
+        const requests = [];
+        const pinned = new Set();
+        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 } };
+        const p = view.position;
+        for (const cell of this.cells) {
+            const decision = decideCell(this.lodOf.get(cell.id), cell.bounds, view, this.profile);
+            this.lodOf.set(cell.id, decision.lod);
+            cell.lod = decision.lod;
+            cell.distance = decision.distance;
+            this.box.min.set(cell.bounds.min[0] - p[0], cell.bounds.min[1] - p[1], cell.bounds.min[2] - p[2]);
+            this.box.max.set(cell.bounds.max[0] - p[0], cell.bounds.max[1] - p[1], cell.bounds.max[2] - p[2]);
+            const visible = this.frustum.intersectsBox(this.box);
+            const near = decision.distance < this.scene.cell_size;
+            const group = this.world.cellGroup(cell);
+            group.visible = visible;
+            if (!visible && !near) continue;
+            if (visible) {
+                ++stats.visible;
+                ++stats.cells[decision.lod];
+            }
+            const sse = Math.min(decision.sse, 1e6);
+            const objects = [];
+            for (const b of cell.batches) {
+                const tree = this.grammar(b.grammar)?.kind === 'tree';
+                const wantTerminals = decision.lod === TERMINALS && (!tree || decision.distance < treeDistance);
+                const wantExtruded = !tree;
+                if (wantExtruded && !this.cache.has(b.extruded_set)) requests.push({ url: b.extruded_set, kind: 'extruded', grammar: b.grammar, priority: (visible ? 3e6 : 1e6) + sse });
+                if (wantTerminals && !this.cache.has(b.terminal_set)) requests.push({ url: b.terminal_set, kind: 'terminal', grammar: b.grammar, priority: (visible ? 2e6 : 0) + sse });
+                const pick = (url, old) => (this.cache.has(url) ? url : old && this.cache.has(old) ? old : null);
+                const ext = pick(b.extruded_set, b.shown.extruded);
+                let term = wantTerminals || decision.lod === EXTRUDED ? pick(b.terminal_set, b.shown.terminal) : null;
+                if (term && !(this.libraries[b.grammar]?.isReady && this.impostors.isReady)) term = null;
+                if (decision.lod === EXTRUDED && ext) term = null; // LOD0 is enough here
+                if (!wantTerminals && tree) term = null;
+                b.shown = { extruded: ext, terminal: term };
+                if (term) {
+                    const value = this.cache.get(term);
+                    objects.push(this.object(term, value, 'terminals'));
+                    value.terminals.updateLod([p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]], distances);
+                    if (visible) for (const lod of [4, 3, 2]) stats.terminals[lod] += value.terminals.counts[lod];
+                    pinned.add(term);
+                    b.drawn = { url: term, version: value.version, kind: 'terminal' };
+                }
+                if (ext) {
+                    objects.push(this.object(ext, this.cache.get(ext), term ? 'backing' : 'lod0'));
+                    pinned.add(ext);
+                    if (!term) b.drawn = { url: ext, version: this.cache.get(ext).version, kind: 'extruded' };
+                }
+                if (!term && !ext) b.drawn = null;
+            }
+            const keep = new Set(objects);
+            for (const child of [...group.children]) if (!keep.has(child)) group.remove(child);
+            for (const o of objects) if (o.parent !== group) group.add(o);
+        }
+        // Cells neither visible nor near draw nothing and pin nothing.
+        for (const cell of this.cells) {
+            if (!this.world.cellGroup(cell).visible && cell.distance >= this.scene.cell_size) this.world.cellGroup(cell).clear();
+        }
+        this.queue.want(requests);
+        this.cache.trim(pinned);
+        Object.assign(this.stats, stats);
+    }
+
+    // The batch versions drawn now that differ from 1 (edited), and those of `cell` if given.
+    versions(cell) {
+        const out = [];
+        for (const c of this.cells)
+            for (const b of c.batches)
+                if (b.drawn && (b.drawn.version > 1 || c === cell)) out.push({ cell: c.id, grammar: b.grammar, version: b.drawn.version, kind: b.drawn.kind });
+        return out;
+    }
+}

@@ -1,0 +1,37 @@
+// The stats overlay: frame rate, cells per LOD, terminals drawn per LOD, bytes downloaded, the
+// content cache, pending requests, where meshes and impostors come from (or why not), and the
+// versions of the batches drawn (edited ones, and the selected cell's).
+const MiB = 1024 * 1024;
+
+export class StatsPanel {
+    constructor(element) {
+        this.element = element;
+        this.frames = [];
+    }
+
+    frame(now) {
+        this.frames.push(now);
+        while (this.frames.length > 1 && now - this.frames[0] > 1000) this.frames.shift();
+    }
+
+    get fps() {
+        if (this.frames.length < 2) return 0;
+        return ((this.frames.length - 1) * 1000) / (this.frames[this.frames.length - 1] - this.frames[0]);
+    }
+
+    show(s) {
+        const lines = [
+            `fps ${this.fps.toFixed(1)}   mode ${s.mode}   speed ${s.speed.toFixed(1)} m/s   ${s.events}`,
+            `camera ${s.position.map((v) => v.toFixed(1)).join(', ')}`,
+            `cells in view ${s.streamer.visible}: LOD0 (extruded) ${s.streamer.cells.extruded}, terminal sets ${s.streamer.cells.terminals}`,
+            `terminals drawn: LOD4 ${s.streamer.terminals[4]}, LOD3 ${s.streamer.terminals[3]}, LOD2 ${s.streamer.terminals[2]}`,
+            `downloaded ${(s.traffic.bytes / MiB).toFixed(2)} MiB in ${s.traffic.requests} requests (${s.traffic.errors} errors)`,
+            `cache ${s.cache.entries} payloads, ${(s.cache.bytes / MiB).toFixed(1)} of ${(s.cache.budget / MiB).toFixed(0)} MiB, ${s.cache.evictions} evicted`,
+            `requests pending ${s.pending}, in flight ${s.inFlight}, aborted ${s.aborted}`,
+            `meshes ${s.meshes}   impostors ${s.impostors}`,
+            s.loadTime !== null ? `first view complete in ${s.loadTime.toFixed(2)} s` : 'loading the first view...',
+            `versions: ${s.versions.length ? s.versions.map((v) => `(${v.cell})/${v.grammar} v${v.version}`).join(' ') : 'all v1'}`,
+        ];
+        this.element.textContent = lines.join('\n');
+    }
+}

@@ -1,0 +1,35 @@
+// The impostor shaders in chromium (part of ctest web.browser): impostor_page.js bundled with
+// esbuild and loaded into a page. LOD2 must show exactly the central view (5: red 80, green 175
+// in sRGB); LOD3 from straight in front must blend the four views around the front direction
+// (5, 6, 9, 10, equal weights: red near their mean, 120); both must cover the quad's middle.
+import assert from 'node:assert/strict';
+import path from 'node:path';
+import test from 'node:test';
+import { fileURLToPath } from 'node:url';
+
+import * as esbuild from 'esbuild';
+
+import { launchChromium } from './harness.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+
+test('LOD2 and LOD3 impostor shaders compile and sample the right views', { timeout: 120000 }, async () => {
+    const bundle = await esbuild.build({ entryPoints: [path.join(here, 'impostor_page.js')], bundle: true, format: 'esm', write: false, logLevel: 'warning' });
+    const script = bundle.outputFiles[0].text.replaceAll('</script>', '<\\/script>');
+    const browser = await launchChromium({ width: 200, height: 200 });
+    try {
+        const errors = [];
+        browser.page.on('pageerror', (e) => errors.push(e.message));
+        await browser.page.setContent(`<!doctype html><html><body><script type="module">${script}</script></body></html>`);
+        await browser.page.waitForFunction(() => window.impostorResult, null, { timeout: 60000 });
+        const { results, errors: shaderErrors } = await browser.page.evaluate(() => window.impostorResult);
+        assert.deepEqual([...errors, ...shaderErrors], []);
+        for (const lod of [2, 3]) assert.ok(results[lod].covered > 800, `LOD${lod} covers ${results[lod].covered} pixels`);
+        const [r2, g2] = results[2].centre;
+        assert.ok(Math.abs(r2 - 80) <= 2 && Math.abs(g2 - 175) <= 2, `LOD2 centre ${results[2].centre}`);
+        const [r3] = results[3].centre;
+        assert.ok(r3 > 100 && r3 < 140, `LOD3 centre ${results[3].centre}`);
+    } finally {
+        await browser.close();
+    }
+});

@@ -1,0 +1,64 @@
+// The viewer's LOD policy against the native one (cells/src/scheduler.cpp, lod/src/cull_inputs.cpp,
+// lod/include/hexlod/lod/cull_shared.h): the screen-space error formula, the hysteresis band, the
+// distance to a cell's bounds, the per-terminal LOD distances and the backface rule.
+import assert from 'node:assert/strict';
+import test from 'node:test';
+
+import {
+    classifyTerminal,
+    decideCell,
+    distanceToBox,
+    EXTRUDED,
+    lodDistance,
+    nextCellLod,
+    screenSpaceError,
+    TERMINALS,
+    terminalLodDistances,
+} from '../src/stream/lod_policy.js';
+
+const profile = { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] };
+const camera = { position: [0, 0, 10], fovY: Math.PI / 3, viewportHeight: 720 };
+
+test('screen-space error is the 3D Tiles formula and infinite inside the bounds', () => {
+    assert.equal(screenSpaceError(4, 100, 720, Math.PI / 3), (4 * 720) / (100 * 2 * Math.tan(Math.PI / 6)));
+    assert.equal(screenSpaceError(4, 0, 720, 1), Infinity);
+    // Where LOD1's error equals the budget: 4 m at 720 px, 60 degrees, 2 px.
+    const d = lodDistance(4, profile, Math.PI / 3, 720);
+    assert.ok(Math.abs(screenSpaceError(4, d, 720, Math.PI / 3) - 2) < 1e-12);
+    assert.ok(Math.abs(d - 1247.0765814495915) < 1e-9);
+});
+
+test('the hysteresis band keeps the previous LOD between max_sse * (1 -+ band)', () => {
+    assert.equal(nextCellLod(EXTRUDED, 2.41, profile), TERMINALS);
+    assert.equal(nextCellLod(EXTRUDED, 2.39, profile), EXTRUDED);
+    assert.equal(nextCellLod(TERMINALS, 1.61, profile), TERMINALS);
+    assert.equal(nextCellLod(TERMINALS, 1.59, profile), EXTRUDED);
+    assert.equal(nextCellLod(TERMINALS, 2, profile), TERMINALS);
+    assert.equal(nextCellLod(EXTRUDED, 2, profile), EXTRUDED);
+});
+
+test('cells are judged by the distance to their bounds box and start extruded', () => {
+    assert.equal(distanceToBox([0, 0, 0], [3, 4, -1], [5, 6, 1]), 5);
+    assert.equal(distanceToBox([4, 5, 0], [3, 4, -1], [5, 6, 1]), 0);
+    const inside = decideCell(undefined, { min: [-1, -1, 0], max: [1, 1, 20] }, camera, profile);
+    assert.deepEqual([inside.distance, inside.sse, inside.lod], [0, Infinity, TERMINALS]);
+    const far = decideCell(undefined, { min: [5000, 0, 0], max: [5100, 10, 10] }, camera, profile);
+    assert.equal(far.lod, EXTRUDED);
+    assert.equal(far.distance, 5000);
+});
+
+test('terminals: LOD3 and LOD2 distances from their geometric errors; backfaces culled', () => {
+    const { lod3, lod2 } = terminalLodDistances(profile, camera);
+    assert.ok(Math.abs(lod3 - (0.25 * 720) / (2 * Math.tan(Math.PI / 6) * 2)) < 1e-9);
+    assert.ok(Math.abs(lod2 - (1 * 720) / (2 * Math.tan(Math.PI / 6) * 2)) < 1e-9);
+    // A 2 x 3 m terminal on a wall facing -y (its normal), axes X = +x, Y = +z, Z = -y.
+    const axes = [1, 0, 0, 0, 0, 1, 0, -1, 0];
+    const at = (y) => [-1, y, -1.5]; // the corner relative to the camera: the wall at distance y
+    assert.equal(classifyTerminal(at(10), axes, 2, 3, 0.3, { lod3, lod2 }, true), 4);
+    assert.equal(classifyTerminal(at(lod3 + 1), axes, 2, 3, 0.3, { lod3, lod2 }, true), 3);
+    assert.equal(classifyTerminal(at(lod2 + 1), axes, 2, 3, 0.3, { lod3, lod2 }, true), 2);
+    assert.equal(classifyTerminal(at(lod2 + 1), axes, 2, 3, 0.3, { lod3, lod2 }, false), 4);
+    // Behind the wall: the camera at y > wall + depth sees its back.
+    assert.equal(classifyTerminal(at(-0.5), axes, 2, 3, 0.3, { lod3, lod2 }, true), 0);
+    assert.equal(classifyTerminal(at(-0.2), axes, 2, 3, 0.3, { lod3, lod2 }, true), 4);
+});
