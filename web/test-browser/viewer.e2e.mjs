@@ -65,7 +65,10 @@ test('the viewer loads, moves, selects a building, tunes it and shows the edit',
     assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
     fs.mkdirSync(artifacts, { recursive: true });
     const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-browser-'));
-    const server = startServer(binary, writeScene(folder));
+    // Small impostors in a store of the test's own, so the bake is quick and leaves nothing behind.
+    const server = startServer(binary, writeScene(folder), [
+        '--impostor-store', path.join(folder, 'impostors'), '--impostor-grid', '4', '--impostor-res', '16',
+    ]);
     let browser;
     try {
         const base = await server.url;
@@ -84,7 +87,10 @@ test('the viewer loads, moves, selects a building, tunes it and shows the edit',
         const loaded = await page.evaluate(() => window.hexlod.state());
         assert.ok(loaded.cache.entries > 0, 'no payload loaded');
         assert.ok(loaded.streamer.visible > 0, 'no cell in view');
-        assert.match(await stats(), /meshes stand-ins \(not served/);
+        // The service serves every shape's glTF mesh and the emitted shapes' impostors.
+        const loadedStats = await stats();
+        assert.match(loadedStats, /meshes (\d+)\/\1 glTF, (\d+)\/\2 glTF/);
+        assert.match(loadedStats, /impostors [1-9]\d* atlases/);
         await shot('01-loaded.png');
 
         // Move the camera with the keyboard.

@@ -27,9 +27,18 @@ vec2 viewUv(float view, vec3 q) {
     impostorBasis(impostorViewDirection(view, atlasLayout.x), right, up);
     return vec2(dot(q, right), dot(q, up));
 }
+// Shape space (metres at the nominal size) to world. A flat shape (nominal depth 0, the wall
+// tile) or a terminal of depth 0 has no depth scale of its own: its z stays metres along the
+// facade normal, as the renderer's normal rule takes a zero nominal component as a ratio of 1.
+// Dividing by the zero depth instead would make the matrix singular and its inverse NaN.
+mat4 shapeToWorldMatrix() {
+    vec3 x = instanceMatrix[0].xyz / nominal.x, y = instanceMatrix[1].xyz / nominal.y;
+    vec3 z = instanceMatrix[2].xyz;
+    z = nominal.z > 1e-6 && dot(z, z) > 1e-12 ? z / nominal.z : normalize(cross(x, y));
+    return modelMatrix * mat4(vec4(x, 0.0), vec4(y, 0.0), vec4(z, 0.0), instanceMatrix[3]);
+}
 void main() {
-    mat4 shapeToWorld = modelMatrix * instanceMatrix * mat4(vec4(1.0 / nominal.x, 0, 0, 0),
-        vec4(0, 1.0 / nominal.y, 0, 0), vec4(0, 0, 1.0 / max(nominal.z, 1e-6), 0), vec4(0, 0, 0, 1));
+    mat4 shapeToWorld = shapeToWorldMatrix();
     mat3 linear = mat3(shapeToWorld);
     mat3 worldToShape = inverse(linear);
     vec3 centre = (shapeToWorld * vec4(sphere.xyz, 1.0)).xyz;

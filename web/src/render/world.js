@@ -15,15 +15,19 @@ export class World {
         this.camera = new THREE.PerspectiveCamera(60, 1, 0.5, 20000);
         this.camera.up.set(0, 0, 1);
         const sunDirection = new THREE.Vector3(0.45, -0.35, 0.82).normalize();
+        const sun = new THREE.DirectionalLight(new THREE.Color(1.0, 0.96, 0.9), 2.2);
+        sun.position.copy(sunDirection);
+        const sky = new THREE.HemisphereLight(0xc8d8ff, 0x6a6255, 1.4);
+        this.scene.add(sun, sky);
+        // The impostor shader lights with these two terms, so that an impostor and the mesh it
+        // stands for match across an LOD switch: three.js's Lambert divides light by pi, and
+        // the hemisphere light seen by a facade (normal on the horizon) is the mean of its two
+        // colours.
         this.lighting = {
             sunDirection,
-            sunColour: new THREE.Color(1.0, 0.96, 0.9).multiplyScalar(2.2),
-            ambientColour: new THREE.Color(0.5, 0.55, 0.62),
+            sunColour: sun.color.clone().multiplyScalar(sun.intensity / Math.PI),
+            ambientColour: sky.color.clone().lerp(sky.groundColor, 0.5).multiplyScalar(sky.intensity / Math.PI),
         };
-        const sun = new THREE.DirectionalLight(0xffffff, 2.2);
-        sun.color.copy(this.lighting.sunColour).multiplyScalar(1 / 2.2);
-        sun.position.copy(sunDirection);
-        this.scene.add(sun, new THREE.HemisphereLight(0xc8d8ff, 0x6a6255, 1.4));
         this.ground = new THREE.Mesh(
             new THREE.PlaneGeometry(40000, 40000),
             new THREE.MeshLambertMaterial({ color: new THREE.Color(0.3, 0.32, 0.28) }),
