@@ -127,10 +127,21 @@ server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const S
     const std::unique_ptr<render::TerminalMeshLibrary> library = sceneMeshLibrary(catalog);
     for (const std::string& note : library->notes()) assets.notes.push_back("meshes: " + note);
     const size_t distinct = addMeshes(*library, assets);
+    const uint32_t grammars = catalog.index().grammarCount();
     assets.notes.push_back("terminal meshes (glTF): " + std::to_string(distinct) + " distinct meshes for " +
-                           std::to_string(catalog.index().grammarCount()) + " grammars, unit scope space");
+                           std::to_string(grammars) + (grammars == 1 ? " grammar" : " grammars") +
+                           ", unit scope space");
     if (!setup.render.impostors) {
         assets.notes.push_back("impostors (EXR, PNG): off (--no-impostors)");
+        return assets;
+    }
+    bool buildings = false;
+    for (const scene::GrammarBuildings& g : catalog.scene().buildingGrammars)
+        buildings |= !g.buildings.empty();
+    if (!buildings) {
+        // Facade impostors are all the service hands out: without buildings there is nothing
+        // to bake, so no GL context is made either.
+        assets.notes.push_back("impostors (EXR, PNG): none needed (the scene has no buildings)");
         return assets;
     }
     render::GlContextResult gl = render::createGlContext({setup.render.backend, true});

@@ -263,6 +263,25 @@ TEST(ServeAssetsWithoutGl, MeshesAreServedAndTheNotesSayWhyImpostorsAreNot) {
     EXPECT_EQ(serve.stop(SIGTERM), 0);
 }
 
+TEST(ServeAssetsWithoutBuildings, NothingIsBakedAndNoGlContextIsMade) {
+    TemporaryFolder folder;
+    SmallScene trees;
+    trees.buildings = 0;
+    trees.trees = 30;
+    const std::string scene = writeSmallScene(folder.path(), trees);
+    ServeProcess serve(serveArguments(folder, scene));
+    ASSERT_TRUE(serve.waitUntilServing()) << serve.stderrText();
+    EXPECT_EQ(serve.stderrText().find("gl: "), std::string::npos) << serve.stderrText();
+    http_client::Connection c("127.0.0.1", serve.port());
+    const Json s = Json::parse(c.get("/api/v1/scene").body);
+    EXPECT_EQ(s["capabilities"]["impostors"], false);
+    EXPECT_EQ(s["capabilities"]["terminal_meshes"], true);
+    EXPECT_EQ(note(s, "impostors (EXR, PNG):"),
+              "impostors (EXR, PNG): none needed (the scene has no buildings)");
+    EXPECT_FALSE(std::filesystem::exists(folder.file("store")));
+    EXPECT_EQ(serve.stop(SIGTERM), 0);
+}
+
 TEST(ServeAssetsOptions, BadImpostorOptionsAreRefusedByName) {
     TemporaryFolder folder;
     const std::string scene = writeSmallScene(folder.path());
