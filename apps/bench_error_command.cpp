@@ -95,6 +95,9 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
     if (int code = openCity("bench error", o.scenePath, session)) return code;
     setup.progress = !o.json;
     if (int code = openRenderer("bench error", setup, session)) return code;
+    // What was started and left out goes to stderr, so that --json keeps stdout to the entries.
+    for (const std::string& note : session.notes)
+        std::fprintf(stderr, "hexlod bench error: %s\n", note.c_str());
     std::filesystem::create_directories(o.outDir);
 
     std::vector<Setting> settings{
@@ -129,6 +132,8 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
             std::cerr << "hexlod bench error: " << setting.name << ": " << error << "\n";
             return 1;
         }
+        if (&setting == &settings.front())
+            std::fprintf(stderr, "hexlod bench error: %s\n", renderer.summary().c_str());
         if (!o.json) std::fprintf(stderr, "hexlod bench error: %s\n", setting.name.c_str());
         SettingResult result;
         result.setting = setting;

@@ -29,8 +29,7 @@ int openCity(const std::string& command, const std::string& scenePath, CitySessi
         std::cerr << "hexlod " << command << ": " << error << "\n";
         return 2;
     }
-    out.notes = built.notes;
-    if (built.treeGrammars.empty()) out.notes.push_back("vegetation: off (no trees)");
+    out.notes = built.notes; // the scene builder's, "vegetation: off (no trees)" among them
     try {
         out.catalog = std::make_unique<cells::BatchCatalog>(std::move(built));
     } catch (const std::exception& e) {

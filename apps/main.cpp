@@ -2,6 +2,7 @@
 // its own file and registers itself here.
 #include "bake_command.h"
 #include "bench_error_command.h"
+#include "bench_impostors_command.h"
 #include "cells_command.h"
 #include "expand_command.h"
 #include "export_command.h"
@@ -32,6 +33,9 @@ int main(int argc, char** argv) {
     hexlod::apps::BenchErrorOptions benchError;
     CLI::App* benchErrorCommand = nullptr;
     hexlod::apps::registerBenchErrorCommand(*bench, benchError, benchErrorCommand);
+    hexlod::apps::BenchImpostorsOptions benchImpostors;
+    CLI::App* benchImpostorsCommand = nullptr;
+    hexlod::apps::registerBenchImpostorsCommand(*bench, benchImpostors, benchImpostorsCommand);
     hexlod::apps::WalkOptions walk;
     CLI::App* walkCommand = hexlod::apps::registerWalkCommand(app, walk);
     hexlod::apps::ServeOptions serve;
@@ -47,6 +51,7 @@ int main(int argc, char** argv) {
     if (walkCommand->parsed()) return hexlod::apps::runWalkCommand(walk);
     if (bakeCommand->parsed()) return hexlod::apps::runBakeCommand(bake);
     if (benchErrorCommand->parsed()) return hexlod::apps::runBenchErrorCommand(benchError);
+    if (benchImpostorsCommand->parsed()) return hexlod::apps::runBenchImpostorsCommand(benchImpostors);
     if (serveCommand->parsed()) return hexlod::apps::runServeCommand(serve);
     if (exportCommand->parsed()) return hexlod::apps::runExportCommand(exportOptions);
     return 0;

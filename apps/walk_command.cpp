@@ -65,7 +65,6 @@ int runWalkCommand(const WalkOptions& o) {
     setup.impostors = mode != lod::RenderMode::AllLod4;
     setup.progress = !o.json;
     if (int code = openRenderer("walk", setup, session)) return code;
-    for (const std::string& note : session.notes) std::fprintf(stderr, "hexlod walk: %s\n", note.c_str());
 
     lod::CityRendererOptions options;
     options.width = o.render.width ? o.render.width : path.viewportWidth;
@@ -80,6 +79,8 @@ int runWalkCommand(const WalkOptions& o) {
         std::cerr << "hexlod walk: " << error << "\n";
         return 1;
     }
+    session.notes.push_back(renderer.summary());
+    for (const std::string& note : session.notes) std::fprintf(stderr, "hexlod walk: %s\n", note.c_str());
     if (!o.outDir.empty()) std::filesystem::create_directories(o.outDir);
     const glm::dvec3 origin = path.relativeToSceneCentre ? sceneCentre(*session.catalog) : glm::dvec3(0.0);
     const std::vector<scene::CameraPose> poses = path.sample(o.frames, origin);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <numeric>
 
 namespace hexlod::apps {
 
@@ -40,6 +41,9 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"batches_drawn", f.batchesDrawn},
         {"batches_pending", f.batchesPending},
         {"batches_rejected", f.batchesRejected},
+        {"cache_lookups", f.cacheLookups},
+        {"cache_hits", f.cacheHits},
+        {"tree_billboards", f.treeBillboards},
         {"cache_bytes", f.cacheBytes},
         {"gpu_bytes", f.gpuBytes},
         {"impostor_bytes", f.impostorBytes},
@@ -73,8 +77,14 @@ nlohmann::json summarizeFrames(const std::vector<lod::FrameStats>& frames) {
         for (const lod::FrameStats& f : frames) values.push_back(get(f));
         return values;
     };
-    uint64_t peak = 0;
-    for (const lod::FrameStats& f : frames) peak = std::max(peak, f.residentBytes());
+    uint64_t peak = 0, peakCache = 0, lookups = 0, hits = 0;
+    for (const lod::FrameStats& f : frames) {
+        peak = std::max(peak, f.residentBytes());
+        peakCache = std::max(peakCache, f.cacheBytes);
+        lookups += f.cacheLookups;
+        hits += f.cacheHits;
+    }
+    const auto generationMs = column([](const auto& f) { return f.generationMs; });
     const auto frameMs = column([](const auto& f) { return f.frameMs; });
     return {{"frames", frames.size()},
             {"median_frame_ms", median(frameMs)},
@@ -95,12 +105,14 @@ nlohmann::json summarizeFrames(const std::vector<lod::FrameStats>& frames) {
               {"cull", median(column([](const auto& f) { return f.cullMs; }))},
               {"draw", median(column([](const auto& f) { return f.drawMs; }))},
               {"gpu_wait", median(column([](const auto& f) { return f.gpuWaitMs; }))}}},
-            {"total_generation_ms",
-             [&] {
-                 double total = 0.0;
-                 for (const auto& f : frames) total += f.generationMs;
-                 return total;
-             }()},
+            {"total_generation_ms", std::accumulate(generationMs.begin(), generationMs.end(), 0.0)},
+            {"median_generation_ms", median(generationMs)},
+            {"p95_generation_ms", percentile(generationMs, 0.95)},
+            // Of the scheduler's cache lookups over the walk: how often a batch it wanted was ready.
+            {"cache_lookups", lookups},
+            {"cache_hit_rate",
+             lookups ? nlohmann::json(double(hits) / double(lookups)) : nlohmann::json(nullptr)},
+            {"peak_cache_bytes", peakCache},
             {"peak_resident_bytes", peak}};
 }
 

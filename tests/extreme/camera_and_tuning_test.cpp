@@ -150,6 +150,8 @@ TEST(ExtremeTuning, AThousandSmallEditsSweepAParameterAndLoseNothing) {
     const std::vector<float>& last = catalog.scene().buildingGrammars[0].buildings[3].parameters;
     EXPECT_FLOAT_EQ(last[size_t(g.findParameter("floors"))], floors.maxValue);
     EXPECT_GT(cache.stats().evictions, 0u); // old versions aged out instead of piling up
+    RecordProperty("evictions", std::to_string(cache.stats().evictions));
+    RecordProperty("terminals_at_max", std::to_string(previousTerminals));
 }
 
 } // namespace

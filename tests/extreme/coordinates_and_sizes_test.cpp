@@ -52,6 +52,8 @@ TEST(ExtremeCoordinates, ACity1e7MetresOutMatchesTheOriginWithinAMillimetreAndRe
     }
     ASSERT_GT(compared, 1000u);
     EXPECT_LT(worst, 1e-3) << "worst terminal offset " << worst << " m";
+    RecordProperty("worst_offset_m", std::to_string(worst)); // for docs/ROBUSTNESS.md
+    RecordProperty("terminals_compared", std::to_string(compared));
 
     PipelineOptions options;
     options.camera = lookAt({80, -60, 25}, {80, 7, 8});
@@ -61,7 +63,9 @@ TEST(ExtremeCoordinates, ACity1e7MetresOutMatchesTheOriginWithinAMillimetreAndRe
     EXPECT_TRUE(x.payloadsRoundTrip && y.payloadsRoundTrip);
     EXPECT_EQ(x.cull.terminalsPerLod, y.cull.terminalsPerLod);
     // The stated bound: the two frames agree to 40 dB (they differ by float rounding only).
-    EXPECT_GE(render::compareImages(x.frame, y.frame).psnr, 40.0);
+    const double psnr = render::compareImages(x.frame, y.frame).psnr;
+    EXPECT_GE(psnr, 40.0);
+    RecordProperty("frame_psnr_db", std::to_string(psnr));
     EXPECT_TRUE(x.glClean && y.glClean);
 }
 
@@ -79,6 +83,7 @@ TEST(ExtremeScopeSizes, FacadesFromAMillimetreToTenKilometresExpandAndRender) {
         // A 10 km facade holds thousands of window bays per storey, all of them terminals.
         if (width == 10000.0) {
             EXPECT_GT(r.terminals, 20000u);
+            RecordProperty("terminals_of_10km_facade", std::to_string(r.terminals));
         }
     }
 }

@@ -1,0 +1,144 @@
+// The rendering commands end to end on llvmpipe (`hexlod walk`, `bake`, `bench error`, `bench
+// impostors`): their JSON contracts, the files they write, a zero-length path, and bad options
+// refused by name with exit code 2. Scenes and frames are tiny, so the whole file runs in seconds.
+#include "command_runner.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace hexlod::test {
+namespace {
+
+using Json = nlohmann::json;
+
+const std::string kScene = std::string(HEXLOD_TESTS_DIR) + "/lod/scenes/three_shapes.json";
+
+// A fresh folder for one test's outputs.
+std::string folder(const std::string& name) {
+    const std::string dir = ::testing::TempDir() + "hexlod-render-cli-" + name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+// A short path around the three-shapes scene's centre; one keyframe makes a zero-length path.
+std::string writePath(const std::string& dir, bool zeroLength = false) {
+    Json keyframes = Json::array();
+    keyframes.push_back({{"time", 0}, {"position", {-60, -60, 30}}, {"target", {0, 0, 5}}});
+    if (!zeroLength) keyframes.push_back({{"time", 4}, {"position", {60, -60, 20}}, {"target", {0, 0, 5}}});
+    const Json path = {{"name", "test orbit"},  {"relative_to", "scene_centre"},
+                       {"viewport", {96, 64}},  {"fov_y_degrees", 60},
+                       {"near", 0.3},           {"far", 5000},
+                       {"keyframes", keyframes}};
+    const std::string file = dir + (zeroLength ? "/still.json" : "/orbit.json");
+    std::ofstream(file) << path.dump();
+    return file;
+}
+
+TEST(RenderCli, WalkJsonAndItsFiles) {
+    const std::string dir = folder("walk");
+    const CommandResult r = runHexlod("walk --scene " + kScene + " --path " + writePath(dir) +
+                                      " --frames 3 --out " + dir + "/out --png --impostor-grid 2 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Json j = Json::parse(r.out);
+    for (const char* key : {"frames", "median_frame_ms", "p95_frame_ms", "median_triangles",
+                            "terminals_per_lod", "peak_resident_bytes", "notes", "cache_hit_rate"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["frames"], 3);
+    EXPECT_GT(j["median_triangles"].get<double>(), 0.0);
+    EXPECT_TRUE(j["terminals_per_lod"].is_object());
+    bool lod1 = false;
+    for (const Json& note : j["notes"]) lod1 |= note == "LOD1 shaders: 1 grammar";
+    EXPECT_TRUE(lod1) << j["notes"];
+    for (const char* file : {"frames.json", "frames.csv", "summary.json", "frame_ms.svg", "frame_00000.png"})
+        EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + file)) << file;
+}
+
+TEST(RenderCli, AZeroLengthPathRendersItsFrames) {
+    const std::string dir = folder("still");
+    const CommandResult r = runHexlod("walk --scene " + kScene + " --path " + writePath(dir, true) +
+                                      " --frames 2 --mode lod4 --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(Json::parse(r.out)["frames"], 2);
+}
+
+TEST(RenderCli, BakeJsonCountsWhatWasBakedAndLeftOut) {
+    const std::string dir = folder("bake");
+    const std::string bake = "bake --scene " + kScene + " --grid 2 --res 16 --store " + dir + "/store";
+    const CommandResult r = runHexlod(bake + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Json j = Json::parse(r.out);
+    for (const char* key : {"shapes_baked", "shapes_skipped_unused", "bytes", "seconds"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["shapes_baked"], 3);
+    EXPECT_EQ(j["shapes_skipped_unused"], 3);
+    EXPECT_GT(j["bytes"].get<uint64_t>(), 0u);
+    const CommandResult sheet = runHexlod(bake + " --show window -o " + dir + "/window.png");
+    ASSERT_EQ(sheet.exitCode, 0) << sheet.err;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/window.png"));
+    const CommandResult unknown = runHexlod(bake + " --show castle -o " + dir + "/castle.png");
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_NE(unknown.err.find("no impostor named 'castle'"), std::string::npos) << unknown.err;
+}
+
+TEST(RenderCli, BenchErrorJsonHasOneEntryPerSetting) {
+    const std::string dir = folder("error");
+    const CommandResult r = runHexlod("bench error --scene " + kScene + " --path " + writePath(dir) +
+                                      " --frames 2 --sse 2,8 --impostor-grid 2 --out " + dir + "/out --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Json entries = Json::parse(r.out);
+    ASSERT_EQ(entries.size(), 7u); // the reference, two sweep values, four forced LODs
+    for (const Json& e : entries)
+        for (const char* key :
+             {"setting", "median_frame_ms", "frame_time_ratio_to_reference", "mean_psnr_db", "mean_ssim"})
+            EXPECT_TRUE(e.contains(key)) << key;
+    EXPECT_EQ(entries[0]["frame_time_ratio_to_reference"], 1.0);
+    EXPECT_GT(entries[1]["mean_psnr_db"].get<double>(), 10.0);
+    for (const char* file : {"error.csv", "error.json", "error_vs_time.svg", "contact_sheet.png"})
+        EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + file)) << file;
+}
+
+TEST(RenderCli, BenchImpostorsSweepsTheGrid) {
+    const std::string dir = folder("impostors");
+    const CommandResult r = runHexlod("bench impostors --scene " + kScene +
+                                      " --grids 2,4 --res 16 --directions 3 "
+                                      "--out " +
+                                      dir + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Json grids = Json::parse(r.out);
+    ASSERT_EQ(grids.size(), 2u);
+    EXPECT_EQ(grids[0]["shapes"], 3);
+    EXPECT_LT(grids[0]["exr_bytes"].get<uint64_t>(), grids[1]["exr_bytes"].get<uint64_t>());
+    EXPECT_LT(grids[0]["mean_psnr_db"].get<double>(), grids[1]["mean_psnr_db"].get<double>())
+        << "more views, less error";
+    for (const char* file : {"impostors.csv", "impostors.json", "error_vs_grid.svg", "error_vs_bytes.svg"})
+        EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/scratch"));
+}
+
+TEST(RenderCli, BadOptionsAreRefusedByName) {
+    const std::string dir = folder("bad");
+    const std::string path = writePath(dir);
+    const struct {
+        std::string arguments, message;
+    } cases[] = {
+        {"walk --scene " + kScene + " --path " + path + " --gl vulkan", "--gl: unknown backend 'vulkan'"},
+        {"walk --scene " + kScene + " --path " + path + " --impostor-grid 40", "--impostor-grid: 40"},
+        {"walk --scene " + kScene + " --path " + dir + "/missing.json", "missing.json"},
+        {"bake --scene " + kScene + " --show window", "--show needs -o"},
+        {"bench error --scene " + kScene + " --path " + path + " --out " + dir + " --sse 0", "--sse: 0"},
+        {"bench impostors --scene " + kScene + " --out " + dir + " --grids 1", "--grids: 1"},
+        {"bench impostors --scene " + kScene + " --out " + dir + " --directions 0", "--directions: 0"},
+    };
+    for (const auto& c : cases) {
+        const CommandResult r = runHexlod(c.arguments);
+        EXPECT_EQ(r.exitCode, 2) << c.arguments << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.message), std::string::npos) << c.arguments << "\n" << r.err;
+    }
+}
+
+} // namespace
+} // namespace hexlod::test
