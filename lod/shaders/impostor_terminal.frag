@@ -60,8 +60,18 @@ void main() {
         impostorViews(forward, views, weights);
         vec4 nd;
         vec4 a = impostorReconstruct(layer, rayOrigin, forward, views, weights, parallaxIterations, nd);
-        albedo = mix(a, albedo, blend);
-        normalDepth = blend > 0.0 ? mix(nd, normalDepth, blend) : nd;
+        if (blend > 0.0) {
+            // Coverage-weighted, as two overlapping layers of paint: where one LOD shows nothing
+            // (alpha 0, depth -1) the other's colour, normal and depth are kept as they are, so
+            // the mix never invents a surface between the two.
+            float wa = (1.0 - blend) * a.a, wb = blend * albedo.a, w = wa + wb;
+            float share = w > 0.0 ? wb / w : 0.0;
+            normalDepth = mix(nd, normalDepth, share);
+            albedo = vec4(mix(a.rgb, albedo.rgb, share), mix(a.a, albedo.a, blend));
+        } else {
+            albedo = a;
+            normalDepth = nd;
+        }
     }
     // With multisampling, coverage becomes the sample mask (alpha to coverage); else a cutout.
     if (albedo.a < (alphaToCoverage != 0u ? 0.02 : 0.5)) discard;
