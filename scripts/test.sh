@@ -2,8 +2,9 @@
 # README command 2: every check CI runs, in order. The Release suite runs last so that
 # the output ends in CTest's summary.
 #   1. ASan+UBSan build, unit tests
-#   2. libFuzzer smoke runs: grammar parser, HTTP requests, extruded-set decoder (FUZZ_SECONDS, default 60)
-#   3. Release build, the whole suite (unit, command line, clang-format check)
+#   2. libFuzzer smoke runs of the ten targets in tests/fuzz (FUZZ_SECONDS in all, default 60)
+#   3. Release build, the whole suite (unit, extreme, command line, service, glTF validator,
+#      web decoders, the browser test, clang-format check)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
