@@ -8,8 +8,6 @@
 #include <EGL/eglext.h>
 
 #include <cstring>
-#include <map>
-#include <mutex>
 #include <string_view>
 
 namespace hexlod::render {
@@ -56,24 +54,10 @@ bool hasExtension(const char* list, std::string_view name) {
     return false;
 }
 
-// eglGetPlatformDisplay returns the same EGLDisplay for the same native display, and
-// eglTerminate would pull it from under every other context on it: count its users.
-std::mutex displayMutex;
-std::map<EGLDisplay, int> displayUsers;
-
-void retainDisplay(EGLDisplay display) {
-    std::lock_guard lock(displayMutex);
-    ++displayUsers[display];
-}
-
-void releaseDisplay(EGLDisplay display) {
-    std::lock_guard lock(displayMutex);
-    if (--displayUsers[display] == 0) {
-        displayUsers.erase(display);
-        eglTerminate(display);
-    }
-}
-
+// A display, once initialised, stays so for the process: eglGetPlatformDisplay returns the
+// same EGLDisplay to every context, and eglTerminate would unload the driver (llvmpipe is
+// tens of MB of code and an LLVM instance) for the next context to load again. It would also
+// drop the driver's globals, so that LeakSanitizer would report what they held as leaks.
 class EglContext final : public GlContext {
 public:
     EglContext(EGLDisplay display, EGLContext context) : display_(display), context_(context) {}
@@ -81,7 +65,6 @@ public:
         if (eglGetCurrentContext() == context_)
             eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(display_, context_);
-        releaseDisplay(display_);
     }
     void makeCurrent() override { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_); }
     GlContextInfo& mutableInfo() { return info_; }
@@ -153,20 +136,17 @@ std::unique_ptr<GlContext> createEglContext(GlBackend backend, bool debug, bool 
         why = "eglInitialize failed (" + eglErrorName(eglGetError()) + ")";
         return nullptr;
     }
-    retainDisplay(display);
     const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
     for (const char* needed :
          {"EGL_KHR_create_context", "EGL_KHR_surfaceless_context", "EGL_KHR_no_config_context"}) {
         if (!hasExtension(extensions, needed)) {
             why = std::string(needed) + " is not supported by " +
                   (eglQueryString(display, EGL_VENDOR) ?: "EGL");
-            releaseDisplay(display);
             return nullptr;
         }
     }
     if (!eglBindAPI(EGL_OPENGL_API)) {
         why = "eglBindAPI(EGL_OPENGL_API) failed (" + eglErrorName(eglGetError()) + ")";
-        releaseDisplay(display);
         return nullptr;
     }
     const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
@@ -181,7 +161,6 @@ std::unique_ptr<GlContext> createEglContext(GlBackend backend, bool debug, bool 
     EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
     if (context == EGL_NO_CONTEXT) {
         why = "eglCreateContext for OpenGL 4.5 core failed (" + eglErrorName(eglGetError()) + ")";
-        releaseDisplay(display);
         return nullptr;
     }
     auto result = std::make_unique<EglContext>(display, context);
