@@ -157,9 +157,11 @@ int runBenchImpostorsCommand(const BenchImpostorsOptions& o) {
         return 2;
     }
     for (uint32_t grid : o.grids) {
-        if (grid < impostor::kMinGrid || grid > impostor::kMaxGrid || grid * o.resolution > 16384) {
+        if (grid < impostor::kMinGrid || grid > impostor::kMaxGrid ||
+            grid * o.resolution > impostor::kMaxAtlasSize) {
             std::cerr << "hexlod bench impostors: --grids: " << grid
-                      << " is outside [2, 32] or makes an atlas over 16384 texels\n";
+                      << " is outside [2, 32] or makes an atlas over " << impostor::kMaxAtlasSize
+                      << " texels\n";
             return 2;
         }
     }

@@ -1,6 +1,8 @@
 // Impostor atlases as tiled OpenEXR files.
 #include "hexlod/impostor/impostor_store.h"
 
+#include "exr_header_gate.h"
+
 #include <ImfChannelList.h>
 #include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
@@ -103,6 +105,10 @@ bool writeImpostorFile(const std::string& path, const ImpostorAtlas& atlas, std:
 }
 
 bool readImpostorFile(const std::string& path, ImpostorAtlas& out, std::string& error) {
+    if (!exrHeaderIsSound(path, int(kMaxAtlasSize), error)) {
+        error = path + ": " + error;
+        return false;
+    }
     try {
         Imf::TiledInputFile file(path.c_str());
         const Imf::Header& header = file.header();

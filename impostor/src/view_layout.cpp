@@ -81,8 +81,9 @@ bool ViewLayout::validate(std::string& error) const {
                 std::to_string(padding) + " leaves no inner area";
         return false;
     }
-    if (uint64_t(grid) * viewResolution > 16384) {
-        error = "atlas of " + std::to_string(uint64_t(grid) * viewResolution) + " texels exceeds 16384";
+    if (uint64_t(grid) * viewResolution > kMaxAtlasSize) {
+        error = "atlas of " + std::to_string(uint64_t(grid) * viewResolution) + " texels exceeds " +
+                std::to_string(kMaxAtlasSize);
         return false;
     }
     return true;

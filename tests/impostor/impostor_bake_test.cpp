@@ -176,6 +176,15 @@ TEST_F(ImpostorBakeTest, CorruptTruncatedAndForeignFilesAreDetectedAndRemoved) {
     expectCorrupt("foreign");
     std::ofstream(path) << "garbage";
     expectCorrupt("garbage");
+    // A header claiming a 2 GB attribute in a file of 40 bytes: refused before OpenEXR's C++
+    // reader would allocate what the header claims.
+    {
+        const char header[] = "\x76\x2f\x31\x01\x02\x02\x00\x00hexlodJunk\0opaque\0\xf0\xff\xff\x7f"
+                              "short";
+        std::ofstream(path, std::ios::binary).write(header, sizeof header - 1);
+    }
+    expectCorrupt("oversized attribute");
+    EXPECT_NE(reason.find("size"), std::string::npos) << reason;
     // A valid impostor filed under another key.
     ImpostorAtlas other = atlas;
     other.contentKey = atlas.contentKey + 7;

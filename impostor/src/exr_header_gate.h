@@ -1,0 +1,16 @@
+// A check of an EXR file's header by OpenEXRCore before OpenEXR's C++ reader opens it.
+// The C++ reader of OpenEXR 3.1 trusts the sizes a header states: a 562-byte file that
+// claims an 800 MB attribute gets 800 MB allocated before anything is read (found by the
+// impostor_file fuzzer). OpenEXRCore checks every size against the file and takes limits on
+// the image and tile extents, so a file it accepts costs the C++ reader what the file holds.
+#pragma once
+
+#include <string>
+
+namespace hexlod::impostor {
+
+// True when `path` holds one tiled part whose header OpenEXRCore reads, with a data window
+// and tiles of at most `maxSide` texels a side; else false with OpenEXRCore's reason.
+bool exrHeaderIsSound(const std::string& path, int maxSide, std::string& error);
+
+} // namespace hexlod::impostor
