@@ -132,8 +132,11 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
             std::cerr << "hexlod bench error: " << setting.name << ": " << error << "\n";
             return 1;
         }
-        if (&setting == &settings.front())
+        if (&setting == &settings.front()) {
             std::fprintf(stderr, "hexlod bench error: %s\n", renderer.summary().c_str());
+            if (std::string note = renderer.arenaNote(); !note.empty())
+                std::fprintf(stderr, "hexlod bench error: %s\n", note.c_str());
+        }
         if (!o.json) std::fprintf(stderr, "hexlod bench error: %s\n", setting.name.c_str());
         SettingResult result;
         result.setting = setting;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -275,7 +276,14 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     // counted apart for the reports.
     const double lod1Distance =
         lodDistance(options_.lod.geometricError[0], options_.lod, pose.fovY, options_.height);
-    for (const cells::CellDecision& cell : decision.cells) {
+    // Nearest cells first: when the arena cannot hold every set in view, the ones it rejects
+    // (drawn at LOD1 or LOD0) are the farthest.
+    std::vector<const cells::CellDecision*> nearestFirst;
+    for (const cells::CellDecision& cell : decision.cells) nearestFirst.push_back(&cell);
+    std::stable_sort(nearestFirst.begin(), nearestFirst.end(),
+                     [](const auto* a, const auto* b) { return a->distance < b->distance; });
+    for (const cells::CellDecision* nearest : nearestFirst) {
+        const cells::CellDecision& cell = *nearest;
         ++stats.visibleCells;
         if (cell.lod == cells::CellLod::Terminals) {
             ++stats.cellsPerLod[4];
@@ -426,6 +434,18 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
 std::string CityRenderer::summary() const {
     return "LOD1 shaders: " + std::to_string(programs_ ? programs_->lod1.size() : 0) + " grammar" +
            (programs_ && programs_->lod1.size() == 1 ? "" : "s");
+}
+
+std::string CityRenderer::arenaNote() const {
+    const ArenaStats arena = arena_.stats();
+    if (arena.capacityRecords >= arena.requestedRecords) return "";
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "terminal arena: %.2f M records of the %.2f M asked, capped by the GL's largest shader "
+                  "storage block (%llu MiB); terminal sets beyond it draw at LOD1 or LOD0 (batches_rejected)",
+                  arena.capacityRecords / 1e6, arena.requestedRecords / 1e6,
+                  (unsigned long long)(arena_.byteSize() >> 20));
+    return text;
 }
 
 void CityRenderer::drawTerminals(FrameStats& stats) {

@@ -12,7 +12,10 @@ TerminalArena::~TerminalArena() {
 }
 
 bool TerminalArena::create(uint64_t capacityRecords, std::string& error) {
-    const uint64_t pages = (capacityRecords + kArenaPageRecords - 1) / kArenaPageRecords;
+    GLint64 maxBlockBytes = 0;
+    gl::glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlockBytes);
+    const uint64_t maxPages = uint64_t(maxBlockBytes) / (kArenaPageRecords * sizeof(grammar::TerminalRecord));
+    const uint64_t pages = std::min((capacityRecords + kArenaPageRecords - 1) / kArenaPageRecords, maxPages);
     if (pages == 0 || pages * kArenaPageRecords > std::numeric_limits<uint32_t>::max()) {
         error =
             "terminal arena capacity " + std::to_string(capacityRecords) + " records is outside [1, 2^32)";
@@ -35,6 +38,7 @@ bool TerminalArena::create(uint64_t capacityRecords, std::string& error) {
     slots_.clear();
     stats_ = {};
     stats_.capacityRecords = pages * kArenaPageRecords;
+    stats_.requestedRecords = capacityRecords;
     return true;
 }
 

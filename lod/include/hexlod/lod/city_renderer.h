@@ -46,7 +46,7 @@ struct CityRendererOptions {
     uint32_t samples = 1;
     RenderMode mode = RenderMode::Lod;
     scene::LodProfile lod;
-    uint64_t arenaRecords = uint64_t(1) << 23;        // 8 M terminals, 256 MiB
+    uint64_t arenaRecords = uint64_t(1) << 23;        // 8 M terminals, 256 MiB, if the GL allows
     uint64_t volumeBudgetBytes = uint64_t(256) << 20; // base volume meshes
     double transitionBand = 0.15;                     // share of each LOD's range that blends into the next
     uint32_t parallaxIterations = 2;                  // LOD3
@@ -90,6 +90,9 @@ public:
     const CityRendererOptions& options() const { return options_; }
     // What the renderer compiled: "LOD1 shaders: 2 grammars".
     std::string summary() const;
+    // "terminal arena: 4.19 M records, capped by the GL (...)" when the GL holds fewer
+    // terminals on the GPU than the options ask for; empty otherwise.
+    std::string arenaNote() const;
     // GPU bytes of the tree billboards (positions, species, impostors): 0 without trees.
     uint64_t treeBytes() const { return trees_.byteSize(); }
 

@@ -19,6 +19,7 @@ inline constexpr uint32_t kArenaPageRecords = 64; // HEXLOD_ARENA_PAGE in cull_s
 
 struct ArenaStats {
     uint64_t capacityRecords = 0;
+    uint64_t requestedRecords = 0; // what create() was asked for: more than capacity when the GL caps it
     uint64_t residentRecords = 0;
     uint32_t residentBatches = 0;
     uint32_t freePages = 0;
@@ -36,6 +37,9 @@ public:
     TerminalArena& operator=(const TerminalArena&) = delete;
 
     // Allocates the buffer, rounded up to whole pages; false with a reason when GL refuses.
+    // The cull pass binds the whole arena as one shader storage block, so the capacity is
+    // capped at GL_MAX_SHADER_STORAGE_BLOCK_SIZE (128 MiB, 4 M records, on llvmpipe): past it
+    // a shader reads nothing, and terminals would vanish from the frame without an error.
     bool create(uint64_t capacityRecords, std::string& error);
 
     void beginFrame(uint64_t frame);
