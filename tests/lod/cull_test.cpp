@@ -5,6 +5,7 @@
 #include "hexlod/lod/cpu_cull.h"
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/lod/terminal_arena.h"
+#include "hexlod/render/gl_api.h"
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -207,6 +208,22 @@ TEST_F(CullTest, ArenaEvictsTheLeastRecentlyDrawnWhenFull) {
     TerminalSet huge = randomSet(random, 4000, 2, 10);
     EXPECT_FALSE(arena.acquire(5, huge));
     EXPECT_FALSE(arena.create(0, error));
+}
+
+// The cull pass binds the arena as one storage block: asked for more than the GL's largest,
+// the arena holds what that block does (llvmpipe: 128 MiB, 4 M records), not a buffer whose
+// records past the block a shader would never read.
+TEST_F(CullTest, ArenaStaysWithinTheGlsLargestStorageBlock) {
+    GLint64 maxBlockBytes = 0;
+    gl::glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlockBytes);
+    ASSERT_GT(maxBlockBytes, 0);
+    const uint64_t blockRecords = uint64_t(maxBlockBytes) / sizeof(grammar::TerminalRecord);
+    TerminalArena arena;
+    std::string error;
+    ASSERT_TRUE(arena.create(blockRecords + 10 * kArenaPageRecords, error)) << error;
+    EXPECT_EQ(arena.stats().capacityRecords, blockRecords / kArenaPageRecords * kArenaPageRecords);
+    EXPECT_EQ(arena.stats().requestedRecords, blockRecords + 10 * kArenaPageRecords);
+    EXPECT_LE(arena.byteSize(), uint64_t(maxBlockBytes));
 }
 
 } // namespace
