@@ -15,7 +15,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     hexlod::scene::CameraPath path;
     std::string error;
     if (!hexlod::scene::parseCameraPath(text, "fuzz.json", path, error)) {
-        check(hexlod::fuzz::startsWith(error, "fuzz.json:") && error.size() > 11); // ": field: " or ":line:col: "
+        check(hexlod::fuzz::startsWith(error, "fuzz.json:") &&
+              error.size() > 11); // ": field: " or ":line:col: "
         return 0;
     }
     check(!path.keyframes.empty() && path.viewportWidth > 0 && path.viewportHeight > 0);

@@ -14,7 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     hexlod::scene::SceneConfig config;
     std::string error;
     if (!hexlod::scene::parseSceneConfig(text, "fuzz.json", HEXLOD_CONFIGS_DIR, config, error)) {
-        check(hexlod::fuzz::startsWith(error, "fuzz.json:") && error.size() > 11); // ": field: " or ":line:col: "
+        check(hexlod::fuzz::startsWith(error, "fuzz.json:") &&
+              error.size() > 11); // ": field: " or ":line:col: "
         check(config.grammars.empty() && config.sources.empty() &&
               config.name.empty()); // nothing half-filled
         return 0;
