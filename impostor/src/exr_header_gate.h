@@ -9,8 +9,9 @@
 
 namespace hexlod::impostor {
 
-// True when `path` holds one tiled part whose header OpenEXRCore reads, with a data window
-// and tiles of at most `maxSide` texels a side; else false with OpenEXRCore's reason.
-bool exrHeaderIsSound(const std::string& path, int maxSide, std::string& error);
+// True when `path` holds one tiled part whose header OpenEXRCore reads, with a data window of
+// at most `maxImageSide` and tiles of at most `maxTileSide` texels a side, and only the
+// attribute types an impostor uses, each of the size its type has; else false with a reason.
+bool exrHeaderIsSound(const std::string& path, int maxImageSide, int maxTileSide, std::string& error);
 
 } // namespace hexlod::impostor

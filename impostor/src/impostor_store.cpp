@@ -105,7 +105,7 @@ bool writeImpostorFile(const std::string& path, const ImpostorAtlas& atlas, std:
 }
 
 bool readImpostorFile(const std::string& path, ImpostorAtlas& out, std::string& error) {
-    if (!exrHeaderIsSound(path, int(kMaxAtlasSize), error)) {
+    if (!exrHeaderIsSound(path, int(kMaxAtlasSize), int(kMaxViewResolution), error)) {
         error = path + ": " + error;
         return false;
     }

@@ -76,6 +76,11 @@ bool ViewLayout::validate(std::string& error) const {
                 std::to_string(kMaxGrid) + "]";
         return false;
     }
+    if (viewResolution > kMaxViewResolution) {
+        error = "view resolution " + std::to_string(viewResolution) + " exceeds " +
+                std::to_string(kMaxViewResolution);
+        return false;
+    }
     if (viewResolution < 4 || 2 * padding >= viewResolution) {
         error = "view resolution " + std::to_string(viewResolution) + " with padding " +
                 std::to_string(padding) + " leaves no inner area";

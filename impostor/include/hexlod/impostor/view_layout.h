@@ -24,8 +24,8 @@ namespace hexlod::impostor {
 enum class ViewSphere : uint8_t { Hemisphere, FullSphere };
 
 inline constexpr uint32_t kMinGrid = 2, kMaxGrid = 32, kDefaultGrid = 8;
-// The widest atlas a layout may make, in texels per side.
-inline constexpr uint32_t kMaxAtlasSize = 16384;
+// The widest atlas a layout may make, and the widest view, in texels per side.
+inline constexpr uint32_t kMaxAtlasSize = 16384, kMaxViewResolution = 1024;
 
 struct ViewLayout {
     ViewSphere sphere = ViewSphere::Hemisphere;
