@@ -86,34 +86,37 @@ nlohmann::json summarizeFrames(const std::vector<lod::FrameStats>& frames) {
     }
     const auto generationMs = column([](const auto& f) { return f.generationMs; });
     const auto frameMs = column([](const auto& f) { return f.frameMs; });
-    return {{"frames", frames.size()},
-            {"median_frame_ms", median(frameMs)},
-            {"p95_frame_ms", percentile(frameMs, 0.95)},
-            {"median_triangles", median(column([](const auto& f) { return double(f.triangles); }))},
-            {"median_draws", median(column([](const auto& f) { return double(f.draws); }))},
-            {"terminals_per_lod",
-             {{"lod2", median(column([](const auto& f) { return double(f.terminalsPerLod[2]); }))},
-              {"lod3", median(column([](const auto& f) { return double(f.terminalsPerLod[3]); }))},
-              {"lod4", median(column([](const auto& f) { return double(f.terminalsPerLod[4]); }))}}},
-            {"cells_per_lod",
-             {{"lod0", median(column([](const auto& f) { return double(f.cellsPerLod[0]); }))},
-              {"lod1", median(column([](const auto& f) { return double(f.cellsPerLod[1]); }))},
-              {"terminal_sets", median(column([](const auto& f) { return double(f.cellsPerLod[4]); }))}}},
-            {"median_stage_ms",
-             {{"schedule", median(column([](const auto& f) { return f.scheduleMs; }))},
-              {"upload", median(column([](const auto& f) { return f.uploadMs; }))},
-              {"cull", median(column([](const auto& f) { return f.cullMs; }))},
-              {"draw", median(column([](const auto& f) { return f.drawMs; }))},
-              {"gpu_wait", median(column([](const auto& f) { return f.gpuWaitMs; }))}}},
-            {"total_generation_ms", std::accumulate(generationMs.begin(), generationMs.end(), 0.0)},
-            {"median_generation_ms", median(generationMs)},
-            {"p95_generation_ms", percentile(generationMs, 0.95)},
-            // Of the scheduler's cache lookups over the walk: how often a batch it wanted was ready.
-            {"cache_lookups", lookups},
-            {"cache_hit_rate",
-             lookups ? nlohmann::json(double(hits) / double(lookups)) : nlohmann::json(nullptr)},
-            {"peak_cache_bytes", peakCache},
-            {"peak_resident_bytes", peak}};
+    return {
+        {"frames", frames.size()},
+        {"median_frame_ms", median(frameMs)},
+        {"p95_frame_ms", percentile(frameMs, 0.95)},
+        {"median_triangles", median(column([](const auto& f) { return double(f.triangles); }))},
+        {"median_draws", median(column([](const auto& f) { return double(f.draws); }))},
+        // Terminal sets in view that the GPU arena could not hold, drawn at LOD1 or LOD0.
+        {"median_batches_rejected", median(column([](const auto& f) { return double(f.batchesRejected); }))},
+        {"terminals_per_lod",
+         {{"lod2", median(column([](const auto& f) { return double(f.terminalsPerLod[2]); }))},
+          {"lod3", median(column([](const auto& f) { return double(f.terminalsPerLod[3]); }))},
+          {"lod4", median(column([](const auto& f) { return double(f.terminalsPerLod[4]); }))}}},
+        {"cells_per_lod",
+         {{"lod0", median(column([](const auto& f) { return double(f.cellsPerLod[0]); }))},
+          {"lod1", median(column([](const auto& f) { return double(f.cellsPerLod[1]); }))},
+          {"terminal_sets", median(column([](const auto& f) { return double(f.cellsPerLod[4]); }))}}},
+        {"median_stage_ms",
+         {{"schedule", median(column([](const auto& f) { return f.scheduleMs; }))},
+          {"upload", median(column([](const auto& f) { return f.uploadMs; }))},
+          {"cull", median(column([](const auto& f) { return f.cullMs; }))},
+          {"draw", median(column([](const auto& f) { return f.drawMs; }))},
+          {"gpu_wait", median(column([](const auto& f) { return f.gpuWaitMs; }))}}},
+        {"total_generation_ms", std::accumulate(generationMs.begin(), generationMs.end(), 0.0)},
+        {"median_generation_ms", median(generationMs)},
+        {"p95_generation_ms", percentile(generationMs, 0.95)},
+        // Of the scheduler's cache lookups over the walk: how often a batch it wanted was ready.
+        {"cache_lookups", lookups},
+        {"cache_hit_rate",
+         lookups ? nlohmann::json(double(hits) / double(lookups)) : nlohmann::json(nullptr)},
+        {"peak_cache_bytes", peakCache},
+        {"peak_resident_bytes", peak}};
 }
 
 } // namespace hexlod::apps
