@@ -13,13 +13,7 @@ duration=${DURATION:-10}
 connections=${CONNECTIONS:-1 16 128}
 repeat=${REPEAT:-30}
 mkdir -p "$out"
-work=$(mktemp -d)
-server_pid=
-cleanup() {
-    [ -n "$server_pid" ] && kill "$server_pid" 2>/dev/null && wait "$server_pid" 2>/dev/null
-    rm -rf "$work"
-}
-trap cleanup EXIT
+source "$(dirname "$0")/server_process.sh"
 
 # No rate limit: the load generator is one client address.
 # shellcheck disable=SC2086 # SERVE_OPTIONS is a list of options

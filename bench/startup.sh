@@ -10,13 +10,7 @@ build=${1:?usage: startup.sh BUILD_DIR [OUT_DIR]}
 out=${2:-out/bench}
 repeat=${REPEAT:-3}
 mkdir -p "$out"
-work=$(mktemp -d)
-server_pid=
-cleanup() {
-    [ -n "$server_pid" ] && kill "$server_pid" 2>/dev/null && wait "$server_pid" 2>/dev/null
-    rm -rf "$work"
-}
-trap cleanup EXIT
+source "$(dirname "$0")/server_process.sh"
 
 # One start: prints "seconds rss_mb peak_mb" and leaves the notes in $work/notes.txt.
 start_once() {

@@ -48,8 +48,8 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
             instances.push_back(t);
         }
     }
-    // Without trees the two buffers are one-element placeholders (the cull pass binds the
-    // tree buffer whatever the scene) and count as nothing.
+    // Without trees each buffer holds one unused element, since the cull pass binds the tree
+    // buffer whatever the scene and GL has no empty buffer storage; they count as nothing.
     auto upload = [](uint32_t& buffer, const std::vector<glm::vec4>& data) {
         gl::glCreateBuffers(1, &buffer);
         gl::glNamedBufferStorage(buffer, GLsizeiptr(std::max<size_t>(data.size(), 1) * sizeof(glm::vec4)),
