@@ -25,6 +25,8 @@ CLI::App* registerWalkCommand(CLI::App& app, WalkOptions& o) {
     cmd->add_flag("--reference", o.reference, "Draw everything at LOD4 (the error reports' reference)");
     cmd->add_option("--mode", o.mode, "lod, or one LOD forced on everything: lod4, lod3, lod2, lod1, lod0");
     cmd->add_flag("--json", o.json, "Print the summary as one JSON object");
+    cmd->add_flag("--time-passes", o.timePasses,
+                  "Finish and time every draw pass (pass_ms); slows the frame a little");
     addRenderOptions(*cmd, o.render);
     return cmd;
 }
@@ -73,6 +75,7 @@ int runWalkCommand(const WalkOptions& o) {
     options.lod = profile;
     options.schedulerWorkers = o.render.workers;
     options.samples = o.render.samples;
+    options.timePasses = o.timePasses;
     lod::CityRenderer renderer(*session.catalog, *session.cache, *session.meshes, &session.impostors,
                                options);
     if (!renderer.init(error)) {

@@ -15,6 +15,7 @@ struct WalkOptions {
     std::string scenePath, pathPath, outDir, profilePath, mode = "lod";
     uint32_t frames = 60;
     bool reference = false, png = false, json = false;
+    bool timePasses = false; // --time-passes
     RenderOptions render;
 };
 

@@ -21,6 +21,17 @@ double median(std::vector<double> values) {
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+namespace {
+
+nlohmann::json passJson(const std::function<double(lod::DrawPass)>& ms) {
+    nlohmann::json passes = nlohmann::json::object();
+    for (size_t p = 0; p < size_t(lod::DrawPass::Count); ++p)
+        passes[lod::drawPassName(lod::DrawPass(p))] = ms(lod::DrawPass(p));
+    return passes;
+}
+
+} // namespace
+
 nlohmann::json frameJson(const lod::FrameStats& f) {
     return {
         {"frame", f.frame},
@@ -31,6 +42,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"cull_ms", f.cullMs},
         {"draw_ms", f.drawMs},
         {"gpu_wait_ms", f.gpuWaitMs},
+        {"pass_ms", passJson([&](lod::DrawPass p) { return f.passMs[size_t(p)]; })},
         {"triangles", f.triangles},
         {"draws", f.draws},
         {"terminals_per_lod",
@@ -108,6 +120,10 @@ nlohmann::json summarizeFrames(const std::vector<lod::FrameStats>& frames) {
           {"cull", median(column([](const auto& f) { return f.cullMs; }))},
           {"draw", median(column([](const auto& f) { return f.drawMs; }))},
           {"gpu_wait", median(column([](const auto& f) { return f.gpuWaitMs; }))}}},
+        // With --time-passes: the draw stage split by pass, GL time included.
+        {"median_pass_ms", passJson([&](lod::DrawPass p) {
+             return median(column([p](const auto& f) { return f.passMs[size_t(p)]; }));
+         })},
         {"total_generation_ms", std::accumulate(generationMs.begin(), generationMs.end(), 0.0)},
         {"median_generation_ms", median(generationMs)},
         {"p95_generation_ms", percentile(generationMs, 0.95)},

@@ -1,6 +1,7 @@
 #version 450 core
 // Turns the cull pass's counters into indirect draw commands, one thread per shape: an indexed
-// instanced draw of its mesh over the LOD4 entries, and a 36-vertex box per impostor entry.
+// instanced draw of its mesh over the LOD4 entries, and a non-instanced draw of
+// six vertices (a screen rectangle) per impostor entry, which pull their entry by gl_VertexID.
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 3) readonly buffer ShapeBuffer { uvec4 shapes[]; };
@@ -22,8 +23,8 @@ void main() {
     commands[at + 3u] = mesh.z;
     commands[at + 4u] = info.x;
     at = shapeCount * 5u + shape * 4u;
-    commands[at + 0u] = 36u;
-    commands[at + 1u] = count.y;
-    commands[at + 2u] = 0u;
-    commands[at + 3u] = info.x + info.y - count.y;
+    commands[at + 0u] = 6u * count.y;
+    commands[at + 1u] = 1u;
+    commands[at + 2u] = 6u * (info.x + info.y - count.y);
+    commands[at + 3u] = 0u;
 }

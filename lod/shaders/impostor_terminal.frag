@@ -1,9 +1,9 @@
 #version 450 core
-// Ray-casts one terminal's impostor: the pixel's view ray is carried into the shape's nominal
-// space (undoing the scope's stretch), then LOD3 blends the four nearest views with parallax
-// correction and LOD2 maps the central view onto the wall plane; the LOD3 -> LOD2 transition
-// mixes the two. The surface found writes its own depth, so impostors and geometry intersect
-// correctly.
+// Ray-casts one LOD3 terminal's impostor: the pixel's view ray enters the terminal's box (or
+// misses it, within the box's screen rectangle) and is carried into the shape's nominal space
+// (undoing the scope's stretch), then LOD3 blends the four nearest views with parallax
+// correction; in the LOD3 -> LOD2 transition it mixes in the central view on the wall plane.
+// The surface found writes its own depth, so impostors and geometry intersect correctly.
 #include "frame.glsl"
 
 uniform sampler2DArray impostorAlbedo, impostorNormalDepth;
@@ -18,8 +18,9 @@ uniform uint parallaxIterations; // LOD3
 layout(std430, binding = 8) readonly buffer ShapeBuffer { GpuShape shapes[]; };
 layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; }; // per layer: centre, radius
 
-in vec3 vPosition;
+noperspective in vec3 vRay;
 flat in vec3 vCorner, vAxisX, vAxisY, vAxisZ, vScope;
+flat in vec3 vBoxLo, vBoxHi;
 flat in uint vShape;
 flat in float vTransition;
 uniform uint alphaToCoverage;
@@ -36,14 +37,24 @@ void main() {
     uint layer = uint(shape.nominalSize.w);
     vec4 sphere = spheres[layer];
     mat3 toScope = transpose(mat3(vAxisX, vAxisY, vAxisZ));
+    // Slab test in scope metres; a flat box (zero depth) is its one plane. The camera inside
+    // the box, or the box behind it, shows nothing, as the box's back faces would not.
+    vec3 rayScope = toScope * vRay, fromScope = toScope * -vCorner;
+    vec3 inverse = 1.0 / mix(rayScope, vec3(1e-20), lessThan(abs(rayScope), vec3(1e-20)));
+    vec3 t0 = (vBoxLo - fromScope) * inverse, t1 = (vBoxHi - fromScope) * inverse;
+    vec3 near = min(t0, t1), far = max(t0, t1);
+    float enter = max(max(near.x, near.y), near.z), leave = min(min(far.x, far.y), far.z);
+    if (enter > leave || enter < 0.0) discard;
+    vec3 vPosition = vRay * enter;
     vec3 entry = toNominal(toScope * (vPosition - vCorner), shape.nominalSize.xyz);
     vec3 direction = toNominal(toScope * normalize(vPosition), shape.nominalSize.xyz);
     vec3 forward = -normalize(direction);
     vec3 q = (entry - sphere.xyz) / sphere.w;
     vec3 rayOrigin = q - dot(q, forward) * forward;
 
-    // LOD2: the central view, sampled where the ray meets the wall plane (z = 0 nominal).
-    float blend = vTransition < 0.0 ? 1.0 : vTransition;
+    // The LOD2 end of the blend: the central view, sampled where the ray meets the wall plane
+    // (z = 0 nominal). Pure LOD2 entries are drawn by impostor_wall.*.
+    float blend = vTransition;
     vec4 albedo = vec4(0.0), normalDepth = vec4(0.0, 0.0, 0.0, -1.0);
     if (blend > 0.0) {
         vec3 viewForward = impostorViewDirection(centralView), right, up;

@@ -1,40 +1,77 @@
 #version 450 core
-// LOD3 and LOD2: each impostor entry of the draw lists as the box of its mesh bounds, whose
-// fragments then ray-cast into the shape's baked views (impostor_terminal.frag).
+// LOD3 and the LOD3 -> LOD2 blend: each such draw-list entry as one screen rectangle bounding
+// the projection of its mesh bounds. The fragments ray-cast that box and then the shape's
+// baked views (impostor_terminal.frag), writing the depth they find. Pure LOD2 entries draw
+// nothing here: impostor_wall.* draws them with the GL's depth, which the GL can test before
+// shading (a shader that writes depth is tested after it, on every covered pixel).
 #include "gpu_types.h"
 #include "frame.glsl"
-
-layout(location = HEXLOD_ATTRIBUTE_INSTANCE_POSITION) in vec3 corner;
-layout(location = HEXLOD_ATTRIBUTE_INSTANCE_BUILDING) in float transition;
-layout(location = HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION) in vec4 orientation;
-layout(location = HEXLOD_ATTRIBUTE_INSTANCE_SIZE) in vec2 size;
-layout(location = HEXLOD_ATTRIBUTE_INSTANCE_SHAPE) in uint shape;
-layout(location = HEXLOD_ATTRIBUTE_INSTANCE_DEPTH) in float depthRatio;
+#include "draw_list_entry.glsl"
 
 layout(std430, binding = 8) readonly buffer ShapeBuffer { GpuShape shapes[]; };
 
-out vec3 vPosition;
+uniform mat4 inverseViewProjection;
+
+noperspective out vec3 vRay; // camera-relative point on the pixel's view ray
 flat out vec3 vCorner, vAxisX, vAxisY, vAxisZ, vScope;
+flat out vec3 vBoxLo, vBoxHi; // the mesh bounds in scope metres
 flat out uint vShape;
 flat out float vTransition;
 
-// The 36 corners of a box's 12 triangles, counter-clockwise from outside.
-const int kFaces[36] = int[](0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2,
-                             1, 3, 7, 1, 7, 5);
-
 void main() {
-    vec4 q = normalize(orientation);
-    vAxisX = rotateByQuaternion(q, vec3(1, 0, 0));
-    vAxisY = rotateByQuaternion(q, vec3(0, 1, 0));
-    vAxisZ = rotateByQuaternion(q, vec3(0, 0, 1));
-    vScope = vec3(size, depthRatio * min(size.x, size.y));
-    int c = kFaces[gl_VertexID];
-    vec3 lo = shapes[shape].boundsMin.xyz, hi = shapes[shape].boundsMax.xyz;
-    vec3 unit = vec3((c & 4) != 0 ? hi.x : lo.x, (c & 2) != 0 ? hi.y : lo.y, (c & 1) != 0 ? hi.z : lo.z);
-    vec3 position = corner + vAxisX * (unit.x * vScope.x) + vAxisY * (unit.y * vScope.y) + vAxisZ * (unit.z * vScope.z);
-    gl_Position = viewProjection * vec4(position, 1.0);
-    vPosition = position;
-    vCorner = corner;
-    vShape = shape;
-    vTransition = transition;
+    DrawEntry e = drawEntry(uint(gl_VertexID) / 6u);
+    if (isWallImpostor(e)) {
+        gl_Position = kNoVertex;
+        return;
+    }
+    vBoxLo = shapes[e.shape].boundsMin.xyz * e.scope;
+    vBoxHi = shapes[e.shape].boundsMax.xyz * e.scope;
+
+    // The box's corners in clip space: one corner plus the three edge vectors (projection is
+    // linear before the divide). The rectangle bounds the box clipped to the near plane (in
+    // reversed-Z, where clip z reaches w): its corners in front, and where its edges cross the
+    // plane. A box reaching past the camera would otherwise cover the whole screen, and
+    // rasterising near terminals' full-screen rectangles was most of LOD3's time.
+    mat3 axes = mat3(e.axisX, e.axisY, e.axisZ);
+    vec3 extent = vBoxHi - vBoxLo;
+    vec4 origin = viewProjection * vec4(e.corner + axes * vBoxLo, 1.0);
+    vec4 edges[3] = vec4[](viewProjection * vec4(e.axisX * extent.x, 0.0), viewProjection * vec4(e.axisY * extent.y, 0.0),
+                           viewProjection * vec4(e.axisZ * extent.z, 0.0));
+    vec2 lo = vec2(1.0), hi = vec2(-1.0);
+    for (int c = 0; c < 8; ++c) {
+        vec4 p = origin + ((c & 4) != 0 ? edges[0] : vec4(0.0)) + ((c & 2) != 0 ? edges[1] : vec4(0.0)) +
+                 ((c & 1) != 0 ? edges[2] : vec4(0.0));
+        float inFront = p.w - p.z; // >= 0: on the visible side of the near plane
+        if (inFront >= 0.0 && p.w > 0.0) {
+            lo = min(lo, p.xy / p.w);
+            hi = max(hi, p.xy / p.w);
+        }
+        // The three edges leaving this corner toward higher corners.
+        for (int axis = 0; axis < 3; ++axis) {
+            if ((c & (4 >> axis)) != 0) continue;
+            vec4 q = p + edges[axis];
+            float qFront = q.w - q.z;
+            if ((inFront >= 0.0) == (qFront >= 0.0)) continue;
+            vec4 cut = mix(p, q, inFront / (inFront - qFront));
+            if (cut.w <= 0.0) continue;
+            lo = min(lo, cut.xy / cut.w);
+            hi = max(hi, cut.xy / cut.w);
+        }
+    }
+    lo = max(lo, vec2(-1.0));
+    hi = min(hi, vec2(1.0));
+    int corner = drawEntryCorner();
+    vec2 ndc = vec2((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y);
+    // Any depth inside the frustum: the fragment shader writes the surface's own. At a constant
+    // clip depth the unprojected point is linear across the screen, so vRay interpolates exactly.
+    gl_Position = vec4(ndc, 0.5, 1.0);
+    vec4 ray = inverseViewProjection * vec4(ndc, 0.5, 1.0);
+    vRay = ray.xyz / ray.w;
+    vCorner = e.corner;
+    vAxisX = e.axisX;
+    vAxisY = e.axisY;
+    vAxisZ = e.axisZ;
+    vScope = e.scope;
+    vShape = e.shape;
+    vTransition = e.transition;
 }

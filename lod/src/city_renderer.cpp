@@ -105,9 +105,49 @@ bool parseRenderMode(std::string_view name, RenderMode& out) {
     return false;
 }
 
+const char* drawPassName(DrawPass pass) {
+    switch (pass) {
+    case DrawPass::TerminalMeshes:
+        return "terminal_meshes";
+    case DrawPass::Lod0:
+        return "lod0";
+    case DrawPass::Lod1:
+        return "lod1";
+    case DrawPass::Ground:
+        return "ground";
+    case DrawPass::Impostors:
+        return "impostors";
+    case DrawPass::Trees:
+    case DrawPass::Count:
+        break;
+    }
+    return "trees";
+}
+
+// With CityRendererOptions::timePasses, ends each draw pass with glFinish and adds its time to
+// FrameStats::passMs; otherwise does nothing, so an untimed frame never waits between passes.
+class CityRenderer::PassTimer {
+public:
+    PassTimer(bool enabled, FrameStats& stats) : enabled_(enabled), stats_(stats) {
+        if (enabled_) gl::glFinish();
+        start_ = Clock::now();
+    }
+    void end(DrawPass pass) {
+        if (!enabled_) return;
+        gl::glFinish();
+        stats_.passMs[size_t(pass)] += millisecondsSince(start_);
+        start_ = Clock::now();
+    }
+
+private:
+    bool enabled_;
+    FrameStats& stats_;
+    Clock::time_point start_;
+};
+
 struct CityRenderer::Programs {
-    render::ShaderProgram lod4, impostor, volume;
-    std::map<uint32_t, render::ShaderProgram> lod1; // per building grammar with buildings
+    render::ShaderProgram lod4, impostor, impostorWall, volume; // impostor: LOD3 ray-cast; impostorWall: LOD2
+    std::map<uint32_t, render::ShaderProgram> lod1;             // per building grammar with buildings
 };
 
 CityRenderer::CityRenderer(cells::BatchCatalog& catalog, cache::TerminalSetCache& cache,
@@ -195,6 +235,12 @@ bool CityRenderer::init(std::string& error) {
                                           {render::ShaderStage::Fragment, "impostor_terminal.frag"}},
                                          "", error);
         if (!programs_->impostor.valid()) return false;
+        programs_->impostorWall =
+            render::ShaderProgram::build(library,
+                                         {{render::ShaderStage::Vertex, "impostor_wall.vert"},
+                                          {render::ShaderStage::Fragment, "impostor_wall.frag"}},
+                                         "", error);
+        if (!programs_->impostorWall.valid()) return false;
         // One LOD1 interpreter per building grammar that has buildings.
         for (uint32_t g = 0; g < catalog_.scene().buildingGrammars.size(); ++g) {
             const scene::GrammarBuildings& grammar = catalog_.scene().buildingGrammars[g];
@@ -226,8 +272,7 @@ bool CityRenderer::init(std::string& error) {
     gl::glVertexArrayElementBuffer(lod4Vao_, shapes_.indexBuffer());
     render::setMeshVertexFormat(lod4Vao_, 0);
     setTerminalInstanceFormat(lod4Vao_, 1);
-    gl::glCreateVertexArrays(1, &impostorVao_);
-    setTerminalInstanceFormat(impostorVao_, 1);
+    gl::glCreateVertexArrays(1, &impostorVao_); // attribute-less: impostors pull their entries
     return true;
 }
 
@@ -393,10 +438,15 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glDisable(GL_BLEND);
     gl::glEnable(GL_CULL_FACE);
     gl::glCullFace(GL_BACK);
-    drawTerminals(stats);
-    drawVolumes(volumes, pose.position, stats);
+    PassTimer timer(options_.timePasses, stats);
+    // Opaque geometry first: base volumes and the ground then hide impostors behind them
+    // before their fragments are shaded.
+    drawTerminalMeshes(stats, timer);
+    drawVolumes(volumes, pose.position, stats, timer);
     stats.triangles += ground_.draw(programs_->volume, pose.position);
     stats.draws += 2;
+    timer.end(DrawPass::Ground);
+    drawImpostors(glm::mat4(glm::inverse(glm::dmat4(uniforms.viewProjection))), stats, timer);
     if (trees_.hasImpostors() && !billboards.empty()) {
         gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
         trees_.begin(trees_.program());
@@ -411,6 +461,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         gl::glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         gl::glBindVertexArray(0);
     }
+    timer.end(DrawPass::Trees);
     stats.drawMs = millisecondsSince(stageStart);
 
     stageStart = Clock::now();
@@ -448,7 +499,7 @@ std::string CityRenderer::arenaNote() const {
     return text;
 }
 
-void CityRenderer::drawTerminals(FrameStats& stats) {
+void CityRenderer::drawTerminalMeshes(FrameStats& stats, PassTimer& timer) {
     const uint32_t shapes = cull_.shapeCount();
     if (shapes == 0) return;
     const std::vector<glm::uvec4> counters = cull_.readCounters();
@@ -456,8 +507,9 @@ void CityRenderer::drawTerminals(FrameStats& stats) {
         stats.terminalsPerLod[4] += counters[s].x;
         stats.terminalsPerLod[3] += counters[s].z;
         stats.terminalsPerLod[2] += counters[s].w;
-        stats.triangles += uint64_t(counters[s].x) * shapes_.triangles(s) + uint64_t(counters[s].y) * 12;
-        stats.draws += (counters[s].x > 0) + (counters[s].y > 0);
+        // An impostor is one rectangle: two triangles.
+        stats.triangles += uint64_t(counters[s].x) * shapes_.triangles(s) + uint64_t(counters[s].y) * 2;
+        stats.draws += (counters[s].x > 0) + (counters[s].z > 0) + (counters[s].w > 0);
     }
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
@@ -466,27 +518,45 @@ void CityRenderer::drawTerminals(FrameStats& stats) {
     programs_->lod4.use();
     gl::glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(shapes),
                                     kLod4CommandStride);
-    if (programs_->impostor.valid() && stats.terminalsPerLod[3] + stats.terminalsPerLod[2] > 0) {
-        gl::glBindVertexArray(impostorVao_);
-        gl::glVertexArrayVertexBuffer(impostorVao_, 1, cull_.listBuffer(), 0, sizeof(gpu::GpuTerminal));
-        programs_->impostor.use();
-        impostorTextures_.bind(programs_->impostor, 0);
-        programs_->impostor.set("centralView", centralView_);
-        programs_->impostor.set("parallaxIterations", options_.parallaxIterations);
-        programs_->impostor.set("alphaToCoverage", uint32_t(options_.samples > 1));
-        if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-        gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, sphereBuffer_);
-        gl::glMultiDrawArraysIndirect(GL_TRIANGLES,
-                                      reinterpret_cast<const void*>(uintptr_t(shapes) * kLod4CommandStride),
-                                      GLsizei(shapes), kImpostorCommandStride);
+    gl::glBindVertexArray(0);
+    gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    timer.end(DrawPass::TerminalMeshes);
+}
+
+void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, const FrameStats& stats,
+                                 PassTimer& timer) {
+    const uint32_t shapes = cull_.shapeCount();
+    if (shapes == 0 || !programs_->impostor.valid() ||
+        stats.terminalsPerLod[3] + stats.terminalsPerLod[2] == 0)
+        return;
+    gl::glBindVertexArray(impostorVao_);
+    gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, cull_.listBuffer());
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, sphereBuffer_);
+    if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    // Both programs walk every impostor entry, each drawing its own kind: LOD2 on the wall
+    // plane first, depth-tested before shading, then the ray-cast LOD3 entries.
+    const void* commands = reinterpret_cast<const void*>(uintptr_t(shapes) * kLod4CommandStride);
+    for (const render::ShaderProgram* program : {&programs_->impostorWall, &programs_->impostor}) {
+        program->use();
+        impostorTextures_.bind(*program, 0);
+        program->set("centralView", centralView_);
+        program->set("alphaToCoverage", uint32_t(options_.samples > 1));
+        if (program == &programs_->impostor) {
+            program->set("inverseViewProjection", inverseViewProjection);
+            program->set("parallaxIterations", options_.parallaxIterations);
+        }
+        gl::glMultiDrawArraysIndirect(GL_TRIANGLES, commands, GLsizei(shapes), kImpostorCommandStride);
     }
     gl::glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gl::glBindVertexArray(0);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    timer.end(DrawPass::Impostors);
 }
 
 void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
-                               FrameStats& stats) {
+                               FrameStats& stats, PassTimer& timer) {
     // LOD0 first with one program, then LOD1 grammar by grammar.
     programs_->volume.use();
     for (const VolumeDraw& draw : volumes) {
@@ -498,6 +568,7 @@ void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm
         stats.triangles += draw.mesh->indexCount / 3;
         ++stats.draws;
     }
+    timer.end(DrawPass::Lod0);
     for (const auto& [grammar, program] : programs_->lod1) {
         bool bound = false;
         for (const VolumeDraw& draw : volumes) {
@@ -523,6 +594,7 @@ void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm
         }
     }
     gl::glBindVertexArray(0);
+    timer.end(DrawPass::Lod1);
 }
 
 } // namespace hexlod::lod

@@ -55,7 +55,15 @@ struct CityRendererOptions {
     double treeGeometricError = -1.0;
     uint32_t schedulerWorkers = 0;   // 0: batches are generated in the frame that needs them (deterministic)
     uint32_t maxBatchesPerFrame = 0; // 0: no cap
+    // Ends every draw pass with glFinish and times it (FrameStats::passMs): where a frame's
+    // GL time goes, on any GL, timer queries or not. The finishes cost a tiled rasteriser
+    // its overlap between passes, so a timed frame is slower than an untimed one.
+    bool timePasses = false;
 };
+
+// The draw passes, in the order a frame runs them.
+enum class DrawPass : uint8_t { TerminalMeshes, Lod0, Lod1, Ground, Impostors, Trees, Count };
+const char* drawPassName(DrawPass pass); // "terminal_meshes", "impostors", "lod0", ...
 
 struct FrameStats {
     uint64_t frame = 0;
@@ -72,6 +80,8 @@ struct FrameStats {
     uint64_t cacheBytes = 0;                  // terminal sets in the cache's memory tier
     uint64_t gpuBytes = 0;                    // arena, draw lists, meshes, base volumes, frame target
     uint64_t impostorBytes = 0;               // impostor textures
+    // GL milliseconds per draw pass, with CityRendererOptions::timePasses; 0 otherwise.
+    std::array<double, size_t(DrawPass::Count)> passMs{};
     uint64_t residentBytes() const { return cacheBytes + gpuBytes + impostorBytes; }
 };
 
@@ -103,8 +113,13 @@ private:
         bool textured;   // LOD0's wall texture (not under terminals)
         float lod0Blend; // 1: LOD0; below 1: LOD1, blending into LOD0
     };
-    void drawTerminals(FrameStats& stats);
-    void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats);
+    class PassTimer;
+    // LOD4 meshes; also counts every terminal drawn, per LOD, into stats.
+    void drawTerminalMeshes(FrameStats& stats, PassTimer& timer);
+    // LOD2 and LOD3; LOD3 ray-casts from the unprojected screen (inverseViewProjection).
+    void drawImpostors(const glm::mat4& inverseViewProjection, const FrameStats& stats, PassTimer& timer);
+    void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats,
+                     PassTimer& timer);
 
     cells::BatchCatalog& catalog_;
     cache::TerminalSetCache& cache_;
