@@ -20,6 +20,9 @@ struct BenchErrorOptions {
     std::vector<double> sse{0.5, 1, 2, 4, 8, 16};
     bool forced = true; // also the forced LOD3, LOD2, LOD1, LOD0 renders
     bool json = false;
+    // Above 1: errors are measured against the all-LOD4 render at this many times the width
+    // and height, box-filtered down (the timed reference stays at the target size).
+    uint32_t referenceSupersample = 1;
     RenderOptions render;
 };
 

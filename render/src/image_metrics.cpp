@@ -120,4 +120,20 @@ double ssim(const Image& test, const Image& reference) {
     return total / double(x.size());
 }
 
+Image boxDownsample(const Image& image, uint32_t factor) {
+    if (factor == 0 || image.width < factor || image.height < factor) return Image();
+    Image out(image.width / factor, image.height / factor, image.channels);
+    const float weight = 1.0f / float(factor * factor);
+    for (uint32_t y = 0; y < out.height; ++y)
+        for (uint32_t x = 0; x < out.width; ++x) {
+            float* to = out.at(x, y);
+            for (uint32_t sy = 0; sy < factor; ++sy)
+                for (uint32_t sx = 0; sx < factor; ++sx) {
+                    const float* from = image.at(x * factor + sx, y * factor + sy);
+                    for (uint32_t c = 0; c < image.channels; ++c) to[c] += weight * from[c];
+                }
+        }
+    return out;
+}
+
 } // namespace hexlod::render

@@ -57,6 +57,28 @@ TEST(RenderCli, WalkJsonAndItsFiles) {
         EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + file)) << file;
 }
 
+TEST(RenderCli, WalkTimesEveryDrawPassWhenAsked) {
+    const std::string dir = folder("passes");
+    const std::string walk =
+        "walk --scene " + kScene + " --path " + writePath(dir) + " --frames 2 --impostor-grid 2 --json";
+    const CommandResult timed = runHexlod(walk + " --time-passes");
+    ASSERT_EQ(timed.exitCode, 0) << timed.err;
+    const Json passes = Json::parse(timed.out)["median_pass_ms"];
+    double sum = 0.0;
+    for (const char* pass : {"terminal_meshes", "lod0", "lod1", "ground", "impostors", "trees"}) {
+        ASSERT_TRUE(passes.contains(pass)) << pass;
+        EXPECT_GE(passes[pass].get<double>(), 0.0) << pass;
+        sum += passes[pass].get<double>();
+    }
+    EXPECT_GT(sum, 0.0);
+    EXPECT_LE(sum, Json::parse(timed.out)["median_frame_ms"].get<double>());
+    // Untimed, no pass waits for the GL, and none is reported.
+    const CommandResult untimed = runHexlod(walk);
+    ASSERT_EQ(untimed.exitCode, 0) << untimed.err;
+    for (const auto& [pass, ms] : Json::parse(untimed.out)["median_pass_ms"].items())
+        EXPECT_EQ(ms, 0.0) << pass;
+}
+
 TEST(RenderCli, AZeroLengthPathRendersItsFrames) {
     const std::string dir = folder("still");
     const CommandResult r = runHexlod("walk --scene " + kScene + " --path " + writePath(dir, true) +
@@ -101,6 +123,26 @@ TEST(RenderCli, BenchErrorJsonHasOneEntryPerSetting) {
         EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + file)) << file;
 }
 
+TEST(RenderCli, BenchErrorAgainstASupersampledReferenceMeasuresTheReferenceToo) {
+    const std::string dir = folder("error-supersampled");
+    const CommandResult r =
+        runHexlod("bench error --scene " + kScene + " --path " + writePath(dir) +
+                  " --frames 2 --sse 2 --no-forced --impostor-grid 2 --reference-supersample 2 "
+                  "--out " +
+                  dir + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const Json entries = Json::parse(r.out);
+    ASSERT_EQ(entries.size(), 2u);
+    // The timed reference is still the ratios' denominator, and now has an error of its own:
+    // its aliasing against the filtered ground truth.
+    EXPECT_EQ(entries[0]["frame_time_ratio_to_reference"], 1.0);
+    ASSERT_TRUE(entries[0]["mean_psnr_db"].is_number());
+    EXPECT_GT(entries[0]["mean_psnr_db"].get<double>(), 20.0);
+    EXPECT_LT(entries[0]["mean_psnr_db"].get<double>(), 99.0)
+        << "a one-sample render is not its supersampled self";
+    EXPECT_GT(entries[1]["mean_psnr_db"].get<double>(), 10.0);
+}
+
 TEST(RenderCli, BenchImpostorsSweepsTheGrid) {
     const std::string dir = folder("impostors");
     const CommandResult r = runHexlod("bench impostors --scene " + kScene +
@@ -130,6 +172,10 @@ TEST(RenderCli, BadOptionsAreRefusedByName) {
         {"walk --scene " + kScene + " --path " + dir + "/missing.json", "missing.json"},
         {"bake --scene " + kScene + " --show window", "--show needs -o"},
         {"bench error --scene " + kScene + " --path " + path + " --out " + dir + " --sse 0", "--sse: 0"},
+        {"bench error --scene " + kScene + " --path " + path + " --out " + dir + " --reference-supersample 0",
+         "--reference-supersample: 0"},
+        {"bench error --scene " + kScene + " --path " + path + " --out " + dir + " --reference-supersample 5",
+         "--reference-supersample: 5"},
         {"bench impostors --scene " + kScene + " --out " + dir + " --grids 1", "--grids: 1"},
         {"bench impostors --scene " + kScene + " --out " + dir + " --directions 0", "--directions: 0"},
     };

@@ -115,6 +115,22 @@ TEST(ImageMetricsTest, CoverageMaskIgnoresEmptyBackground) {
     EXPECT_GT(compareImages(a, b, false).psnr, masked.psnr);
 }
 
+TEST(ImageMetricsTest, BoxDownsampleAveragesEachBlock) {
+    // A one-pixel checkerboard at 2x is flat grey at 1x: what a supersampled reference shows
+    // of detail finer than a pixel.
+    Image fine(5, 4, 4);
+    for (uint32_t y = 0; y < fine.height; ++y)
+        for (uint32_t x = 0; x < fine.width; ++x)
+            for (uint32_t c = 0; c < 4; ++c) fine.at(x, y)[c] = float((x + y) % 2);
+    const Image coarse = boxDownsample(fine, 2);
+    ASSERT_EQ(coarse.width, 2u); // 5 / 2, rounded down
+    ASSERT_EQ(coarse.height, 2u);
+    for (float v : coarse.pixels) EXPECT_FLOAT_EQ(v, 0.5f);
+    EXPECT_EQ(boxDownsample(fine, 1).pixels, fine.pixels);
+    EXPECT_TRUE(boxDownsample(fine, 0).empty());
+    EXPECT_TRUE(boxDownsample(fine, 6).empty());
+}
+
 TEST(ImageMetricsTest, SsimIsOneForIdenticalAndDropsWithNoise) {
     Image a = gradient(64, 48);
     EXPECT_NEAR(ssim(a, a), 1.0, 1e-12);

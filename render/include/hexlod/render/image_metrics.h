@@ -27,4 +27,10 @@ ImageDifference compareImages(const Image& test, const Image& reference, bool co
 // images. NaN for mismatched sizes; images smaller than the window use the whole image.
 double ssim(const Image& test, const Image& reference);
 
+// The mean of each factor x factor block: a supersampled render filtered down to its display
+// size, the ground truth an image error should be measured against (a one-sample reference
+// scores the sub-pixel detail it aliases as error). The size is rounded down; an empty image
+// for factor 0 or an image smaller than one block.
+Image boxDownsample(const Image& image, uint32_t factor);
+
 } // namespace hexlod::render
