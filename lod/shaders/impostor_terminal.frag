@@ -45,9 +45,9 @@ void main() {
     vec3 near = min(t0, t1), far = max(t0, t1);
     float enter = max(max(near.x, near.y), near.z), leave = min(min(far.x, far.y), far.z);
     if (enter > leave || enter < 0.0) discard;
-    vec3 vPosition = vRay * enter;
-    vec3 entry = toNominal(toScope * (vPosition - vCorner), shape.nominalSize.xyz);
-    vec3 direction = toNominal(toScope * normalize(vPosition), shape.nominalSize.xyz);
+    vec3 boxEntry = vRay * enter; // camera-relative
+    vec3 entry = toNominal(toScope * (boxEntry - vCorner), shape.nominalSize.xyz);
+    vec3 direction = toNominal(toScope * normalize(boxEntry), shape.nominalSize.xyz);
     vec3 forward = -normalize(direction);
     vec3 q = (entry - sphere.xyz) / sphere.w;
     vec3 rayOrigin = q - dot(q, forward) * forward;
