@@ -1,10 +1,10 @@
-// The impostor passes' view of a draw-list entry. They pull entries by gl_VertexID, six
-// vertices (two triangles) an entry, in one non-instanced draw per shape: a software
-// rasteriser runs its whole vertex pipeline once per instance, and at a few pixels an
-// impostor, that overhead was most of the impostor pass on llvmpipe (3.4 us an entry).
+// The impostor passes' view of a draw-list entry, pulled by gl_VertexID (pulled_quad.glsl) in
+// one non-instanced draw per shape.
 // Entries are GpuTerminal records (gpu_types.h) as terminal_cull.comp writes them: the corner
 // camera-relative, the building field holding the transition factor (-1: LOD2, no transition),
 // the shape field the global shape id.
+#include "pulled_quad.glsl"
+
 layout(std430, binding = 5) readonly buffer ListBuffer { GpuTerminal lists[]; };
 
 struct DrawEntry {
@@ -29,14 +29,6 @@ DrawEntry drawEntry(uint index) {
     e.shape = t.shapeAndDepth & 0xffffu;
     return e;
 }
-
-// The corner (0 to 3: bit 0 high x, bit 1 high y) of an entry's rectangle this vertex is,
-// counter-clockwise; and where a vertex goes that draws nothing (outside the clip volume).
-int drawEntryCorner() {
-    const int corners[6] = int[](0, 1, 2, 2, 1, 3);
-    return corners[uint(gl_VertexID) % 6u];
-}
-const vec4 kNoVertex = vec4(2.0, 2.0, 2.0, 1.0);
 
 // Whether an entry is pure LOD2 (the central view on the wall plane, impostor_wall.*) rather
 // than LOD3 or the LOD2-LOD3 blend (ray-cast, impostor_terminal.*).

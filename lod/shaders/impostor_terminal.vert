@@ -19,7 +19,7 @@ flat out uint vShape;
 flat out float vTransition;
 
 void main() {
-    DrawEntry e = drawEntry(uint(gl_VertexID) / 6u);
+    DrawEntry e = drawEntry(pulledRecord());
     if (isWallImpostor(e)) {
         gl_Position = kNoVertex;
         return;
@@ -60,7 +60,7 @@ void main() {
     }
     lo = max(lo, vec2(-1.0));
     hi = min(hi, vec2(1.0));
-    int corner = drawEntryCorner();
+    int corner = pulledCorner();
     vec2 ndc = vec2((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y);
     // Any depth inside the frustum: the fragment shader writes the surface's own. At a constant
     // clip depth the unprojected point is linear across the screen, so vRay interpolates exactly.

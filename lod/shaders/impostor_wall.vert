@@ -15,13 +15,13 @@ flat out vec3 vAxisX, vAxisY, vAxisZ, vScope;
 flat out uint vShape;
 
 void main() {
-    DrawEntry e = drawEntry(uint(gl_VertexID) / 6u);
+    DrawEntry e = drawEntry(pulledRecord());
     if (!isWallImpostor(e)) {
         gl_Position = kNoVertex;
         return;
     }
     GpuShape shape = shapes[e.shape];
-    int corner = drawEntryCorner();
+    int corner = pulledCorner();
     vec2 unit = vec2((corner & 1) != 0 ? shape.boundsMax.x : shape.boundsMin.x,
                      (corner & 2) != 0 ? shape.boundsMax.y : shape.boundsMin.y);
     vWorld = e.corner + e.axisX * (unit.x * e.scope.x) + e.axisY * (unit.y * e.scope.y);

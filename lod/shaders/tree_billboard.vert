@@ -8,7 +8,10 @@
 layout(std140, binding = 0) uniform CullFrameBlock { CullFrame cull; };
 layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; }; // per species
 
-layout(location = 10) in vec4 tree; // position relative to the trees' origin, species (-1: none)
+#include "pulled_quad.glsl"
+
+// Per tree batch, its trees in a row: position relative to the trees' origin, species (-1: none).
+layout(std430, binding = 13) readonly buffer BillboardBuffer { vec4 billboardTrees[]; };
 uniform uint allBillboards;
 
 out vec3 vPosition;
@@ -16,8 +19,9 @@ flat out vec3 vBase;
 flat out uint vSpecies;
 
 void main() {
+    vec4 tree = billboardTrees[pulledRecord()];
     if (tree.w < 0.0 || (allBillboards == 0u && !treeIsBillboard(tree.xyz, cull))) {
-        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume: nothing drawn
+        gl_Position = kNoVertex;
         return;
     }
     vSpecies = uint(tree.w);
@@ -28,7 +32,8 @@ void main() {
     vec3 up = abs(toCamera.z) > 0.999 ? vec3(0, 1, 0) : vec3(0, 0, 1);
     vec3 right = normalize(cross(up, toCamera));
     up = cross(toCamera, right);
-    vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1)) * 2.0 - 1.0;
+    int vertex = pulledCorner();
+    vec2 corner = vec2(float(vertex & 1), float(vertex >> 1)) * 2.0 - 1.0;
     vPosition = centre + (corner.x * right + corner.y * up) * sphere.w;
     gl_Position = viewProjection * vec4(vPosition, 1.0);
 }

@@ -77,12 +77,8 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
                                              {render::ShaderStage::Fragment, "tree_billboard.frag"}},
                                             "", error);
     if (!program_.valid()) return false;
+    // The shader pulls its trees from the buffer; the core profile still wants a vertex array.
     gl::glCreateVertexArrays(1, &vao_);
-    gl::glVertexArrayVertexBuffer(vao_, 0, instances_, 0, sizeof(glm::vec4));
-    gl::glEnableVertexArrayAttrib(vao_, 10);
-    gl::glVertexArrayAttribFormat(vao_, 10, 4, GL_FLOAT, GL_FALSE, 0);
-    gl::glVertexArrayAttribBinding(vao_, 10, 0);
-    gl::glVertexArrayBindingDivisor(vao_, 0, 1);
     return true;
 }
 
@@ -90,6 +86,7 @@ void TreePass::begin(const render::ShaderProgram& program) const {
     program.use();
     textures_.bind(program, 0);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spheres_);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, instances_);
     gl::glBindVertexArray(vao_);
 }
 
@@ -97,7 +94,7 @@ uint32_t TreePass::draw(uint32_t batch, bool allBillboards) const {
     const auto [first, count] = ranges_.at(batch);
     if (count == 0 || !vao_) return 0;
     program_.set("allBillboards", uint32_t(allBillboards));
-    gl::glDrawArraysInstancedBaseInstance(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count), first);
+    gl::glDrawArrays(GL_TRIANGLES, GLint(6 * first), GLsizei(6 * count));
     return count;
 }
 

@@ -1,8 +1,8 @@
 // Trees far from the camera as billboards (thesis §7.4): every tree of the scene by id (its
 // position and species, which the cull pass also reads to drop the terminals of billboard
-// trees), instanced per tree batch; each billboard faces the camera and ray-casts its
-// species' full-sphere impostor, so it shows the right view from any direction, from above
-// included, and writes the depth of the tree it shows.
+// trees), pulled per tree batch by vertex id (pulled_quad.glsl); each billboard faces the
+// camera and ray-casts its species' full-sphere impostor, so it shows the right view from any
+// direction, from above included, and writes the depth of the tree it shows.
 #pragma once
 
 #include "hexlod/cells/batch_catalog.h"
@@ -45,7 +45,7 @@ public:
 
 private:
     std::vector<glm::vec4> trees_;
-    std::vector<std::pair<uint32_t, uint32_t>> ranges_; // per catalog batch: first instance, count
+    std::vector<std::pair<uint32_t, uint32_t>> ranges_; // per catalog batch: first billboard, count
     glm::dvec3 origin_{0.0};
     impostor::ImpostorTextures textures_;
     render::ShaderProgram program_;
