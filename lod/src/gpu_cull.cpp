@@ -43,7 +43,10 @@ void GpuCull::reserve(BufferIndex index, uint64_t bytes) {
     Buffer& buffer = buffers_[index];
     bytes = std::max<uint64_t>(bytes, 256);
     if (buffer.capacity >= bytes) return;
-    uint64_t capacity = std::max<uint64_t>(buffer.capacity * 2, bytes);
+    // Growth keeps a quarter's headroom at most, not a doubling: the draw lists grow with the
+    // terminals in view up to the arena's size (128 MiB on llvmpipe), where doubling would hold
+    // up to twice what a frame can use.
+    uint64_t capacity = std::max(bytes, std::min(buffer.capacity * 2, bytes + bytes / 4));
     if (buffer.id) gl::glDeleteBuffers(1, &buffer.id);
     gl::glCreateBuffers(1, &buffer.id);
     gl::glNamedBufferStorage(buffer.id, GLsizeiptr(capacity), nullptr, GL_DYNAMIC_STORAGE_BIT);
