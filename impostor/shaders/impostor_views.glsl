@@ -104,13 +104,3 @@ vec4 impostorReconstruct(uint layer, vec3 rayOrigin, vec3 forward, uvec4 views, 
     normalDepth = vec4(length(nd.xyz) > 0.0 ? normalize(nd.xyz) : vec3(0.0), nd.w / colour.w);
     return vec4(colour.rgb / colour.w, min(coverage, 1.0));
 }
-
-// How much of a pixel an impostor texel of alpha `alpha` covers: without multisampling a
-// cutout at one half; with it (alpha to coverage) the same cutout, its edge spread over one
-// pixel. Raw alpha as coverage would turn every faint texel (a blend of views whose leaves do
-// not line up, a bilinear fringe) into partial coverage, and the dozens of far trees a street
-// lines up then stack into solid crowns.
-float cutoutCoverage(float alpha, bool alphaToCoverage) {
-    if (!alphaToCoverage) return alpha < 0.5 ? 0.0 : 1.0;
-    return clamp((alpha - 0.5) / max(fwidth(alpha), 1e-4) + 0.5, 0.0, 1.0);
-}

@@ -84,9 +84,8 @@ void main() {
             normalDepth = nd;
         }
     }
-    // With multisampling, coverage becomes the sample mask (alpha to coverage).
-    float coverage = cutoutCoverage(albedo.a, alphaToCoverage != 0u);
-    if (coverage <= 0.0) discard;
+    // With multisampling, coverage becomes the sample mask (alpha to coverage); else a cutout.
+    if (albedo.a < (alphaToCoverage != 0u ? 0.02 : 0.5)) discard;
 
     // The surface back in camera-relative world space, for lighting, fog and depth.
     vec3 surfaceNominal = sphere.xyz + sphere.w * (rayOrigin + normalDepth.w * forward);
@@ -97,5 +96,5 @@ void main() {
     vec4 clip = viewProjection * vec4(world, 1.0);
     gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0); // reversed-Z, zero-to-one clip depth
     vec3 n = mat3(vAxisX, vAxisY, vAxisZ) * scopeNormal(normalize(normalDepth.xyz), nominal, vScope);
-    colour = vec4(shade(albedo.rgb, n, world), coverage);
+    colour = vec4(shade(albedo.rgb, n, world), alphaToCoverage != 0u ? albedo.a : 1.0);
 }

@@ -30,10 +30,9 @@ void main() {
     vec3 onWall = (vec3(vNominal, 0.0) - sphere.xyz) / sphere.w;
     vec2 uv = vec2(dot(onWall, right), dot(onWall, up));
     vec4 albedo = impostorSample(impostorAlbedo, layer, centralView, uv);
-    // With multisampling, coverage becomes the sample mask (alpha to coverage).
-    float coverage = cutoutCoverage(albedo.a, alphaToCoverage != 0u);
-    if (coverage <= 0.0) discard;
+    // With multisampling, coverage becomes the sample mask (alpha to coverage); else a cutout.
+    if (albedo.a < (alphaToCoverage != 0u ? 0.02 : 0.5)) discard;
     vec3 stored = normalize(impostorSample(impostorNormalDepth, layer, centralView, uv).xyz);
     vec3 n = mat3(vAxisX, vAxisY, vAxisZ) * scopeNormal(stored, shape.nominalSize.xyz, vScope);
-    colour = vec4(shade(albedo.rgb, n, vWorld), coverage);
+    colour = vec4(shade(albedo.rgb, n, vWorld), alphaToCoverage != 0u ? albedo.a : 1.0);
 }

@@ -27,11 +27,10 @@ void main() {
     impostorViews(forward, views, weights);
     vec4 normalDepth;
     vec4 albedo = impostorReconstruct(vSpecies, rayOrigin, forward, views, weights, 1u, normalDepth);
-    // With multisampling, coverage becomes the sample mask (alpha to coverage).
-    float coverage = cutoutCoverage(albedo.a, alphaToCoverage != 0u);
-    if (coverage <= 0.0) discard;
+    // With multisampling, coverage becomes the sample mask (alpha to coverage); else a cutout.
+    if (albedo.a < (alphaToCoverage != 0u ? 0.02 : 0.5)) discard;
     vec3 world = vBase + sphere.xyz + sphere.w * (rayOrigin + normalDepth.w * forward);
     vec4 clip = viewProjection * vec4(world, 1.0);
     gl_FragDepth = clamp(clip.z / clip.w, 0.0, 1.0);
-    colour = vec4(shade(albedo.rgb, normalize(normalDepth.xyz), world), coverage);
+    colour = vec4(shade(albedo.rgb, normalize(normalDepth.xyz), world), alphaToCoverage != 0u ? albedo.a : 1.0);
 }

@@ -190,7 +190,8 @@ bool CityRenderer::init(std::string& error) {
         error = std::string("LOD profile: ") + e.what();
         return false;
     }
-    if (!render::Framebuffer::create({options_.width, options_.height, {GL_RGBA16F}, true}, target_, error))
+    if (!render::Framebuffer::create({options_.width, options_.height, {GL_RGBA16F}, true, options_.samples},
+                                     target_, error))
         return false;
     if (!arena_.create(options_.arenaRecords, error) || !cull_.init(error)) return false;
     programs_ = std::make_unique<Programs>();
