@@ -161,6 +161,15 @@ TEST(RenderCli, BenchImpostorsSweepsTheGrid) {
     EXPECT_FALSE(std::filesystem::exists(dir + "/scratch"));
 }
 
+TEST(RenderCli, WalkRefusesMoreSamplesThanTheGlAllows) {
+    // 64 passes the option's own bounds; no GL multisamples a colour target 64 times.
+    const std::string dir = folder("samples");
+    const CommandResult r = runHexlod("walk --scene " + kScene + " --path " + writePath(dir) +
+                                      " --frames 1 --impostor-grid 2 --samples 64 --out " + dir);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("64 samples per pixel, this GL allows 1 to"), std::string::npos) << r.err;
+}
+
 TEST(RenderCli, BadOptionsAreRefusedByName) {
     const std::string dir = folder("bad");
     const std::string path = writePath(dir);
@@ -176,6 +185,9 @@ TEST(RenderCli, BadOptionsAreRefusedByName) {
          "--reference-supersample: 0"},
         {"bench error --scene " + kScene + " --path " + path + " --out " + dir + " --reference-supersample 5",
          "--reference-supersample: 5"},
+        {"walk --scene " + kScene + " --path " + path + " --samples 0", "--samples: 0"},
+        {"bench error --scene " + kScene + " --path " + path + " --out " + dir + " --samples 65",
+         "--samples: 65"},
         {"bench impostors --scene " + kScene + " --out " + dir + " --grids 1", "--grids: 1"},
         {"bench impostors --scene " + kScene + " --out " + dir + " --directions 0", "--directions: 0"},
     };
