@@ -1,5 +1,6 @@
 #include "city_session.h"
 
+#include "hexlod/render/framebuffer.h"
 #include "hexlod/scene/scene_builder.h"
 
 #include <algorithm>
@@ -99,6 +100,10 @@ int openRenderer(const std::string& command, const RenderSetup& setup, CitySessi
         return 1;
     }
     session.gl = std::move(gl.context);
+    if (std::string why = render::unsupportedSamples(setup.samples); !why.empty()) {
+        std::cerr << "hexlod " << command << ": " << why << "\n";
+        return 1;
+    }
     session.notes.push_back(glContextNote(*session.gl));
     if (!setup.impostors) {
         session.notes.push_back("impostors: off (every terminal draws at LOD4)");

@@ -38,6 +38,7 @@ struct RenderSetup {
     std::string impostorStore;        // empty: bake in memory only
     bool impostors = true;
     bool progress = false; // a progress bar on stderr while baking
+    uint32_t samples = 1;  // per pixel, checked against the GL before anything is baked
 };
 
 // Creates the GL context and bakes (or loads) the impostors the scene uses. Same contract.

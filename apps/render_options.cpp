@@ -39,6 +39,7 @@ bool makeRenderSetup(const RenderOptions& o, RenderSetup& setup, std::string& er
     setup.impostorGrid = o.impostorGrid;
     setup.impostorResolution = o.impostorResolution;
     setup.impostorStore = o.impostorStore;
+    setup.samples = o.samples;
     return true;
 }
 

@@ -55,6 +55,13 @@ void Framebuffer::release() {
     colors_.clear();
 }
 
+std::string unsupportedSamples(uint32_t samples) {
+    GLint maxSamples = 1;
+    gl::glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+    if (samples >= 1 && samples <= uint32_t(maxSamples)) return {};
+    return std::to_string(samples) + " samples per pixel, this GL allows 1 to " + std::to_string(maxSamples);
+}
+
 bool Framebuffer::create(const FramebufferDesc& desc, Framebuffer& out, std::string& error) {
     GLint maxSize = 0, maxAttachments = 0;
     gl::glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
@@ -65,11 +72,8 @@ bool Framebuffer::create(const FramebufferDesc& desc, Framebuffer& out, std::str
                 " is outside 1.." + std::to_string(maxSize);
         return false;
     }
-    GLint maxSamples = 1;
-    gl::glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-    if (desc.samples == 0 || desc.samples > uint32_t(maxSamples)) {
-        error = std::to_string(desc.samples) + " samples per pixel, this GL allows 1 to " +
-                std::to_string(maxSamples);
+    if (std::string why = unsupportedSamples(desc.samples); !why.empty()) {
+        error = std::move(why);
         return false;
     }
     if (desc.colorFormats.size() > size_t(maxAttachments)) {

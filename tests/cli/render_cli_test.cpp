@@ -168,6 +168,7 @@ TEST(RenderCli, WalkRefusesMoreSamplesThanTheGlAllows) {
                                       " --frames 1 --impostor-grid 2 --samples 64 --out " + dir);
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("64 samples per pixel, this GL allows 1 to"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("baking"), std::string::npos) << "refused only after baking the impostors";
 }
 
 TEST(RenderCli, BadOptionsAreRefusedByName) {

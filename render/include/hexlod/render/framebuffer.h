@@ -17,6 +17,10 @@ struct FramebufferDesc {
     uint32_t samples = 1;                       // above 1: multisampled, resolved on readback
 };
 
+// Empty when this GL can multisample a target `samples` times (1: not at all), else why not.
+// Needs a current context.
+std::string unsupportedSamples(uint32_t samples);
+
 class Framebuffer {
 public:
     Framebuffer() = default;
