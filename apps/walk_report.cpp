@@ -56,6 +56,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"cache_lookups", f.cacheLookups},
         {"cache_hits", f.cacheHits},
         {"tree_billboards", f.treeBillboards},
+        {"tree_billboards_occluded", f.treeBillboardsOccluded},
         {"cache_bytes", f.cacheBytes},
         {"gpu_bytes", f.gpuBytes},
         {"impostor_bytes", f.impostorBytes},

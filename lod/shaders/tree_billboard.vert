@@ -1,6 +1,8 @@
 #version 450 core
 // One billboard per tree that the frame's tree cut (treeIsBillboard, shared with the cull pass)
-// leaves to its species impostor: a camera-facing square over the impostor's bounding sphere.
+// leaves to its species impostor: a camera-facing square over the impostor's bounding sphere,
+// dropped whole when what the frame drew before hides it (depth_tiles.glsl): the fragment
+// shader writes its depth, so the GL cannot reject hidden fragments before shading them.
 #include "gpu_types.h"
 #include "cull_shared.h"
 #include "frame.glsl"
@@ -9,10 +11,12 @@ layout(std140, binding = 0) uniform CullFrameBlock { CullFrame cull; };
 layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; }; // per species
 
 #include "pulled_quad.glsl"
+#include "depth_tiles.glsl"
 
 // Per tree batch, its trees in a row: position relative to the trees' origin, species (-1: none).
 layout(std430, binding = 13) readonly buffer BillboardBuffer { vec4 billboardTrees[]; };
 uniform uint allBillboards;
+layout(std430, binding = 14) buffer OcclusionBuffer { uint occludedBillboards; };
 
 out vec3 vPosition;
 flat out vec3 vBase;
@@ -32,6 +36,24 @@ void main() {
     vec3 up = abs(toCamera.z) > 0.999 ? vec3(0, 1, 0) : vec3(0, 0, 1);
     vec3 right = normalize(cross(up, toCamera));
     up = cross(toCamera, right);
+    // The square's screen rectangle, and the depth of the sphere's nearest point: the tree's
+    // surface lies behind it. Skipped when the camera is inside the sphere or a corner is
+    // behind it.
+    vec2 lo = vec2(1e30), hi = vec2(-1e30);
+    bool projectable = length(centre) > sphere.w;
+    for (int c = 0; c < 4; ++c) {
+        vec2 at = vec2(float(c & 1), float(c >> 1)) * 2.0 - 1.0;
+        vec4 clip = viewProjection * vec4(centre + (at.x * right + at.y * up) * sphere.w, 1.0);
+        projectable = projectable && clip.w > 0.0;
+        lo = min(lo, clip.xy / clip.w);
+        hi = max(hi, clip.xy / clip.w);
+    }
+    vec4 nearest = viewProjection * vec4(centre + toCamera * sphere.w, 1.0);
+    if (projectable && behindDepthTiles(lo, hi, nearest.z / nearest.w)) {
+        if (uint(gl_VertexID) % 6u == 0u) atomicAdd(occludedBillboards, 1u);
+        gl_Position = kNoVertex;
+        return;
+    }
     int vertex = pulledCorner();
     vec2 corner = vec2(float(vertex & 1), float(vertex >> 1)) * 2.0 - 1.0;
     vPosition = centre + (corner.x * right + corner.y * up) * sphere.w;

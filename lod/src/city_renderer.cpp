@@ -33,6 +33,8 @@ struct FrameUniforms {
 };
 
 constexpr glm::vec3 kSky(0.62f, 0.72f, 0.84f);
+// Past the tree pass's own textures (units 0 to 3, TreePass::begin).
+constexpr uint32_t kDepthTilesUnit = 7;
 
 // The draw-list records as per-instance attributes (gpu_types.h names their locations).
 void setTerminalInstanceFormat(uint32_t vao, uint32_t binding) {
@@ -265,6 +267,8 @@ bool CityRenderer::init(std::string& error) {
         for (size_t s = 0; s < meshes_.shapeCount(g); ++s) shapeTree_[shapes_.shapeBase(g) + s] = 1;
     shapes_.commit();
     if (!trees_.init(catalog_, impostors_, ground_.origin(), error)) return false;
+    if (trees_.hasImpostors() && !depthTiles_.init(options_.width, options_.height, options_.samples, error))
+        return false;
 
     gl::glCreateBuffers(1, &frameBuffer_);
     gl::glNamedBufferStorage(frameBuffer_, sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -450,7 +454,9 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     drawImpostors(glm::mat4(glm::inverse(glm::dmat4(uniforms.viewProjection))), stats, timer);
     if (trees_.hasImpostors() && !billboards.empty()) {
         gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
+        depthTiles_.build(target_.depthTexture());
         trees_.begin(trees_.program());
+        depthTiles_.bind(trees_.program(), kDepthTilesUnit, options_.occludeBillboards);
         trees_.program().set("alphaToCoverage", uint32_t(options_.samples > 1));
         if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         for (const auto& [batch, all] : billboards) {
@@ -470,6 +476,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     gl::glDepthFunc(GL_LESS);
     stats.gpuWaitMs = millisecondsSince(stageStart);
+    if (trees_.hasImpostors() && !billboards.empty()) stats.treeBillboardsOccluded = trees_.occluded();
     stats.frameMs = millisecondsSince(frameStart);
 
     const cache::CacheStats cacheAfter = cache_.stats();
@@ -478,6 +485,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.cacheHits = cacheAfter.hits - cacheBefore.hits;
     stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
                      volumes_.stats().residentBytes + ground_.byteSize() + trees_.byteSize() +
+                     depthTiles_.byteSize() +
                      uint64_t(options_.width) * options_.height * 12 * options_.samples;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;

@@ -1,7 +1,8 @@
 // The whole frame on llvmpipe: every mode renders a small city, the LOD system costs less than
-// everything at LOD4 and stays close to it, tree billboards cover what their trees cover with
-// and without multisampling, a city 1e7 m out renders as at the origin, odd cameras render
-// without error, and golden images hold each mode's look.
+// everything at LOD4 and stays close to it, multisampling antialiases, tree billboards cover
+// what their trees cover with and without it and hidden ones are dropped without changing a
+// pixel, a city 1e7 m out renders as at the origin, odd cameras render without error, and
+// golden images hold each mode's look.
 #include "../render/gl_fixture.h"
 #include "test_city.h"
 
@@ -40,8 +41,10 @@ protected:
     }
 
     Rendered render(testing::TestCity& city, const SceneImpostors& impostors, RenderMode mode,
-                    const scene::CameraPose& pose, uint32_t frames = 1, uint32_t samples = 1) {
+                    const scene::CameraPose& pose, uint32_t frames = 1, uint32_t samples = 1,
+                    bool occludeBillboards = true) {
         CityRendererOptions options;
+        options.occludeBillboards = occludeBillboards;
         options.width = kWidth;
         options.height = kHeight;
         options.mode = mode;
@@ -159,6 +162,23 @@ TEST_F(CityRendererTest, MultisampledTreeBillboardsCoverWhatTheirTreesCover) {
         std::printf("%u samples: billboards against tree geometry %.2f dB\n", samples, psnr[pass]);
     }
     EXPECT_GT(psnr[1], psnr[0] - 2.0) << "multisampled billboards cover more than their trees";
+}
+
+TEST_F(CityRendererTest, BillboardsHiddenBehindBuildingsAreDroppedWithoutChangingAPixel) {
+    // At street level most far trees stand behind the blocks in front of them.
+    testing::TestCity city = testing::makeCity(50, 200);
+    const SceneImpostors impostors = bake(city);
+    const scene::CameraPose pose = lookAt({-200, -230, 2}, {0, 0, 4});
+    for (uint32_t samples : {1u, 4u}) {
+        Rendered all = render(city, impostors, RenderMode::AllLod1, pose, 1, samples, false);
+        Rendered culled = render(city, impostors, RenderMode::AllLod1, pose, 1, samples, true);
+        EXPECT_EQ(all.stats.treeBillboardsOccluded, 0u);
+        EXPECT_GT(culled.stats.treeBillboardsOccluded, 0u) << samples << " samples";
+        EXPECT_LT(culled.stats.treeBillboardsOccluded, culled.stats.treeBillboards);
+        std::printf("%u samples: %u of %u billboards hidden\n", samples, culled.stats.treeBillboardsOccluded,
+                    culled.stats.treeBillboards);
+        EXPECT_EQ(culled.image.pixels, all.image.pixels) << samples << " samples";
+    }
 }
 
 TEST_F(CityRendererTest, ACityFarFromTheOriginRendersAsAtTheOrigin) {

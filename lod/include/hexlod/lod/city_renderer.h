@@ -15,6 +15,7 @@
 #include "hexlod/cache/terminal_set_cache.h"
 #include "hexlod/cells/scheduler.h"
 #include "hexlod/impostor/impostor_textures.h"
+#include "hexlod/lod/depth_tiles.h"
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/lod/ground_pass.h"
 #include "hexlod/lod/scene_impostors.h"
@@ -59,6 +60,9 @@ struct CityRendererOptions {
     // GL time goes, on any GL, timer queries or not. The finishes cost a tiled rasteriser
     // its overlap between passes, so a timed frame is slower than an untimed one.
     bool timePasses = false;
+    // Drops tree billboards whole that the depth drawn before them hides (DepthTiles). Off
+    // only to check that it changes no pixel.
+    bool occludeBillboards = true;
 };
 
 // The draw passes, in the order a frame runs them.
@@ -76,6 +80,7 @@ struct FrameStats {
     std::array<uint32_t, 5> cellsPerLod{};     // cells in view: 0 and 1 extruded, 4 with terminal sets
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
+    uint32_t treeBillboardsOccluded = 0;      // of those, dropped whole as hidden (DepthTiles)
     uint64_t cacheLookups = 0, cacheHits = 0; // this frame's
     uint64_t cacheBytes = 0;                  // terminal sets in the cache's memory tier
     uint64_t gpuBytes = 0;                    // arena, draw lists, meshes, base volumes, frame target
@@ -135,6 +140,7 @@ private:
     VolumeCache volumes_;
     GroundPass ground_;
     TreePass trees_;
+    DepthTiles depthTiles_;  // for the tree billboards
     double treeError_ = 0.0; // metres; 0: trees are always geometry
     impostor::ImpostorTextures impostorTextures_;
     uint32_t sphereBuffer_ = 0, frameBuffer_ = 0, lod4Vao_ = 0, impostorVao_ = 0;

@@ -1,0 +1,47 @@
+#include "hexlod/lod/depth_tiles.h"
+#include "hexlod/lod/gpu_cull.h"
+#include "hexlod/render/gl_api.h"
+
+namespace hexlod::lod {
+namespace {
+
+constexpr uint32_t kLocalSize = 8; // depth_tiles.comp's local size, each way
+
+} // namespace
+
+DepthTiles::~DepthTiles() {
+    if (texture_) gl::glDeleteTextures(1, &texture_);
+}
+
+bool DepthTiles::init(uint32_t width, uint32_t height, uint32_t samples, std::string& error) {
+    samples_ = samples;
+    columns_ = (width + kDepthTileSize - 1) / kDepthTileSize;
+    rows_ = (height + kDepthTileSize - 1) / kDepthTileSize;
+    render::ShaderLibrary library = lodShaderLibrary();
+    program_ = render::ShaderProgram::build(library, {{render::ShaderStage::Compute, "depth_tiles.comp"}},
+                                            samples > 1 ? "#define MULTISAMPLED 1\n" : "", error);
+    if (!program_.valid()) return false;
+    gl::glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
+    gl::glTextureStorage2D(texture_, 1, GL_R32F, GLsizei(columns_), GLsizei(rows_));
+    return true;
+}
+
+void DepthTiles::build(uint32_t depthTexture) const {
+    program_.use();
+    gl::glBindTextureUnit(0, depthTexture);
+    program_.set("depthTarget", 0);
+    program_.set("tileSize", kDepthTileSize);
+    program_.set("samples", samples_);
+    gl::glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    gl::glDispatchCompute((columns_ + kLocalSize - 1) / kLocalSize, (rows_ + kLocalSize - 1) / kLocalSize, 1);
+    gl::glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void DepthTiles::bind(const render::ShaderProgram& program, uint32_t unit, bool enabled) const {
+    gl::glBindTextureUnit(unit, texture_);
+    program.set("depthTiles", int(unit));
+    program.set("depthTileSize", kDepthTileSize);
+    program.set("depthTilesEnabled", uint32_t(enabled));
+}
+
+} // namespace hexlod::lod
