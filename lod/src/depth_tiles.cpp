@@ -35,6 +35,9 @@ void DepthTiles::build(uint32_t depthTexture) const {
     gl::glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     gl::glDispatchCompute((columns_ + kLocalSize - 1) / kLocalSize, (rows_ + kLocalSize - 1) / kLocalSize, 1);
     gl::glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    // The depth texture stays attached to the target being drawn: left bound, any later
+    // program sampling unit 0 would read it while writing it.
+    gl::glBindTextureUnit(0, 0);
 }
 
 void DepthTiles::bind(const render::ShaderProgram& program, uint32_t unit, bool enabled) const {
