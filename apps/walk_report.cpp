@@ -57,6 +57,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"cache_hits", f.cacheHits},
         {"tree_billboards", f.treeBillboards},
         {"tree_billboards_occluded", f.treeBillboardsOccluded},
+        {"lod3_occluded", f.lod3Occluded},
         {"cache_bytes", f.cacheBytes},
         {"gpu_bytes", f.gpuBytes},
         {"impostor_bytes", f.impostorBytes},

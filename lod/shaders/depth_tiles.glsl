@@ -3,6 +3,13 @@
 uniform sampler2D depthTiles;
 uniform uint depthTileSize;
 uniform uint depthTilesEnabled;
+uniform uint depthTileCount; // which count a dropped rectangle adds to (TileTest)
+layout(std430, binding = 14) buffer DroppedBuffer { uint droppedRectangles[]; };
+
+// Counts a rectangle dropped, once for its six pulled vertices (pulled_quad.glsl).
+void countDropped() {
+    if (uint(gl_VertexID) % 6u == 0u) atomicAdd(droppedRectangles[depthTileCount], 1u);
+}
 
 // `ndcLo`, `ndcHi`: the rectangle's corners in normalised device coordinates; `nearest`: the
 // window depth (reversed-Z) of its nearest point. A rectangle over more tiles than this is not

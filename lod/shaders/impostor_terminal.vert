@@ -3,10 +3,12 @@
 // the projection of its mesh bounds. The fragments ray-cast that box and then the shape's
 // baked views (impostor_terminal.frag), writing the depth they find. Pure LOD2 entries draw
 // nothing here: impostor_wall.* draws them with the GL's depth, which the GL can test before
-// shading (a shader that writes depth is tested after it, on every covered pixel).
+// shading (a shader that writes depth is tested after it, on every covered pixel), so LOD3
+// entries that what was drawn before them hides are dropped whole (depth_tiles.glsl).
 #include "gpu_types.h"
 #include "frame.glsl"
 #include "draw_list_entry.glsl"
+#include "depth_tiles.glsl"
 
 layout(std430, binding = 8) readonly buffer ShapeBuffer { GpuShape shapes[]; };
 
@@ -38,6 +40,9 @@ void main() {
     vec4 edges[3] = vec4[](viewProjection * vec4(e.axisX * extent.x, 0.0), viewProjection * vec4(e.axisY * extent.y, 0.0),
                            viewProjection * vec4(e.axisZ * extent.z, 0.0));
     vec2 lo = vec2(1.0), hi = vec2(-1.0);
+    // The window depth of the box's nearest point (reversed-Z: the largest), which is a corner:
+    // depth is monotonic in view distance. A box crossing the near plane reaches depth 1.
+    float nearest = 0.0;
     for (int c = 0; c < 8; ++c) {
         vec4 p = origin + ((c & 4) != 0 ? edges[0] : vec4(0.0)) + ((c & 2) != 0 ? edges[1] : vec4(0.0)) +
                  ((c & 1) != 0 ? edges[2] : vec4(0.0));
@@ -45,6 +50,9 @@ void main() {
         if (inFront >= 0.0 && p.w > 0.0) {
             lo = min(lo, p.xy / p.w);
             hi = max(hi, p.xy / p.w);
+            nearest = max(nearest, p.z / p.w);
+        } else {
+            nearest = 1.0;
         }
         // The three edges leaving this corner toward higher corners.
         for (int axis = 0; axis < 3; ++axis) {
@@ -60,6 +68,11 @@ void main() {
     }
     lo = max(lo, vec2(-1.0));
     hi = min(hi, vec2(1.0));
+    if (behindDepthTiles(lo, hi, nearest)) {
+        countDropped();
+        gl_Position = kNoVertex;
+        return;
+    }
     int corner = pulledCorner();
     vec2 ndc = vec2((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y);
     // Any depth inside the frustum: the fragment shader writes the surface's own. At a constant

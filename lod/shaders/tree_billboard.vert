@@ -16,7 +16,6 @@ layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; }; //
 // Per tree batch, its trees in a row: position relative to the trees' origin, species (-1: none).
 layout(std430, binding = 13) readonly buffer BillboardBuffer { vec4 billboardTrees[]; };
 uniform uint allBillboards;
-layout(std430, binding = 14) buffer OcclusionBuffer { uint occludedBillboards; };
 
 out vec3 vPosition;
 flat out vec3 vBase;
@@ -50,7 +49,7 @@ void main() {
     }
     vec4 nearest = viewProjection * vec4(centre + toCamera * sphere.w, 1.0);
     if (projectable && behindDepthTiles(lo, hi, nearest.z / nearest.w)) {
-        if (uint(gl_VertexID) % 6u == 0u) atomicAdd(occludedBillboards, 1u);
+        countDropped();
         gl_Position = kNoVertex;
         return;
     }

@@ -33,7 +33,7 @@ struct FrameUniforms {
 };
 
 constexpr glm::vec3 kSky(0.62f, 0.72f, 0.84f);
-// Past the tree pass's own textures (units 0 to 3, TreePass::begin).
+// Past the impostor and tree passes' own textures (units 0 to 3).
 constexpr uint32_t kDepthTilesUnit = 7;
 
 // The draw-list records as per-instance attributes (gpu_types.h names their locations).
@@ -267,7 +267,7 @@ bool CityRenderer::init(std::string& error) {
         for (size_t s = 0; s < meshes_.shapeCount(g); ++s) shapeTree_[shapes_.shapeBase(g) + s] = 1;
     shapes_.commit();
     if (!trees_.init(catalog_, impostors_, ground_.origin(), error)) return false;
-    if (trees_.hasImpostors() && !depthTiles_.init(options_.width, options_.height, options_.samples, error))
+    if (impostors_ && !depthTiles_.init(options_.width, options_.height, options_.samples, error))
         return false;
 
     gl::glCreateBuffers(1, &frameBuffer_);
@@ -444,6 +444,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glEnable(GL_CULL_FACE);
     gl::glCullFace(GL_BACK);
     PassTimer timer(options_.timePasses, stats);
+    if (depthTiles_.valid()) depthTiles_.clearCounts();
     // Opaque geometry first: base volumes and the ground then hide impostors behind them
     // before their fragments are shaded.
     drawTerminalMeshes(stats, timer);
@@ -456,7 +457,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
         depthTiles_.build(target_.depthTexture());
         trees_.begin(trees_.program());
-        depthTiles_.bind(trees_.program(), kDepthTilesUnit, options_.occludeBillboards);
+        depthTiles_.bind(trees_.program(), kDepthTilesUnit, TileTest::TreeBillboards, options_.dropHidden);
         trees_.program().set("alphaToCoverage", uint32_t(options_.samples > 1));
         if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         for (const auto& [batch, all] : billboards) {
@@ -476,7 +477,10 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     gl::glDepthFunc(GL_LESS);
     stats.gpuWaitMs = millisecondsSince(stageStart);
-    if (trees_.hasImpostors() && !billboards.empty()) stats.treeBillboardsOccluded = trees_.occluded();
+    if (depthTiles_.valid()) {
+        stats.treeBillboardsOccluded = depthTiles_.dropped(TileTest::TreeBillboards);
+        stats.lod3Occluded = depthTiles_.dropped(TileTest::Lod3Impostors);
+    }
     stats.frameMs = millisecondsSince(frameStart);
 
     const cache::CacheStats cacheAfter = cache_.stats();
@@ -548,6 +552,8 @@ void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, const F
     // plane first, depth-tested before shading, then the ray-cast LOD3 entries.
     const void* commands = reinterpret_cast<const void*>(uintptr_t(shapes) * kLod4CommandStride);
     for (const render::ShaderProgram* program : {&programs_->impostorWall, &programs_->impostor}) {
+        // LOD3 writes its depth: its entries are tested against everything drawn before it.
+        if (program == &programs_->impostor) depthTiles_.build(target_.depthTexture());
         program->use();
         impostorTextures_.bind(*program, 0);
         program->set("centralView", centralView_);
@@ -555,6 +561,7 @@ void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, const F
         if (program == &programs_->impostor) {
             program->set("inverseViewProjection", inverseViewProjection);
             program->set("parallaxIterations", options_.parallaxIterations);
+            depthTiles_.bind(*program, kDepthTilesUnit, TileTest::Lod3Impostors, options_.dropHidden);
         }
         gl::glMultiDrawArraysIndirect(GL_TRIANGLES, commands, GLsizei(shapes), kImpostorCommandStride);
     }

@@ -6,11 +6,14 @@ namespace hexlod::lod {
 namespace {
 
 constexpr uint32_t kLocalSize = 8; // depth_tiles.comp's local size, each way
+constexpr GLsizeiptr kCountBytes = GLsizeiptr(uint32_t(TileTest::Count) * sizeof(uint32_t));
+constexpr uint32_t kCountBinding = 14; // depth_tiles.glsl's DroppedBuffer
 
 } // namespace
 
 DepthTiles::~DepthTiles() {
     if (texture_) gl::glDeleteTextures(1, &texture_);
+    if (counts_) gl::glDeleteBuffers(1, &counts_);
 }
 
 bool DepthTiles::init(uint32_t width, uint32_t height, uint32_t samples, std::string& error) {
@@ -23,7 +26,20 @@ bool DepthTiles::init(uint32_t width, uint32_t height, uint32_t samples, std::st
     if (!program_.valid()) return false;
     gl::glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
     gl::glTextureStorage2D(texture_, 1, GL_R32F, GLsizei(columns_), GLsizei(rows_));
+    gl::glCreateBuffers(1, &counts_);
+    gl::glNamedBufferStorage(counts_, kCountBytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
     return true;
+}
+
+void DepthTiles::clearCounts() const {
+    gl::glClearNamedBufferSubData(counts_, GL_R32UI, 0, kCountBytes, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                  nullptr);
+}
+
+uint32_t DepthTiles::dropped(TileTest test) const {
+    uint32_t count = 0;
+    gl::glGetNamedBufferSubData(counts_, GLintptr(uint32_t(test) * sizeof count), sizeof count, &count);
+    return count;
 }
 
 void DepthTiles::build(uint32_t depthTexture) const {
@@ -40,8 +56,11 @@ void DepthTiles::build(uint32_t depthTexture) const {
     gl::glBindTextureUnit(0, 0);
 }
 
-void DepthTiles::bind(const render::ShaderProgram& program, uint32_t unit, bool enabled) const {
+void DepthTiles::bind(const render::ShaderProgram& program, uint32_t unit, TileTest test,
+                      bool enabled) const {
     gl::glBindTextureUnit(unit, texture_);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountBinding, counts_);
+    program.set("depthTileCount", uint32_t(test));
     program.set("depthTiles", int(unit));
     program.set("depthTileSize", kDepthTileSize);
     program.set("depthTilesEnabled", uint32_t(enabled));

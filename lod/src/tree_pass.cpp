@@ -7,7 +7,7 @@
 namespace hexlod::lod {
 
 TreePass::~TreePass() {
-    for (uint32_t buffer : {byId_, instances_, spheres_, occlusion_})
+    for (uint32_t buffer : {byId_, instances_, spheres_})
         if (buffer) gl::glDeleteBuffers(1, &buffer);
     if (vao_) gl::glDeleteVertexArrays(1, &vao_);
 }
@@ -77,8 +77,6 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
                                              {render::ShaderStage::Fragment, "tree_billboard.frag"}},
                                             "", error);
     if (!program_.valid()) return false;
-    gl::glCreateBuffers(1, &occlusion_);
-    gl::glNamedBufferStorage(occlusion_, sizeof(uint32_t), nullptr, GL_DYNAMIC_STORAGE_BIT);
     // The shader pulls its trees from the buffer; the core profile still wants a vertex array.
     gl::glCreateVertexArrays(1, &vao_);
     return true;
@@ -89,9 +87,6 @@ void TreePass::begin(const render::ShaderProgram& program) const {
     textures_.bind(program, 0);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spheres_);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, instances_);
-    gl::glClearNamedBufferSubData(occlusion_, GL_R32UI, 0, sizeof(uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT,
-                                  nullptr);
-    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, occlusion_);
     gl::glBindVertexArray(vao_);
 }
 
@@ -100,12 +95,6 @@ uint32_t TreePass::draw(uint32_t batch, bool allBillboards) const {
     if (count == 0 || !vao_) return 0;
     program_.set("allBillboards", uint32_t(allBillboards));
     gl::glDrawArrays(GL_TRIANGLES, GLint(6 * first), GLsizei(6 * count));
-    return count;
-}
-
-uint32_t TreePass::occluded() const {
-    uint32_t count = 0;
-    if (occlusion_) gl::glGetNamedBufferSubData(occlusion_, 0, sizeof count, &count);
     return count;
 }
 

@@ -1,8 +1,8 @@
 // The whole frame on llvmpipe: every mode renders a small city, the LOD system costs less than
 // everything at LOD4 and stays close to it, multisampling antialiases, tree billboards cover
-// what their trees cover with and without it and hidden ones are dropped without changing a
-// pixel, a city 1e7 m out renders as at the origin, odd cameras render without error, and
-// golden images hold each mode's look.
+// what their trees cover with and without it, hidden billboards and LOD3 impostors are
+// dropped without changing a pixel, a city 1e7 m out renders as at the origin, odd cameras
+// render without error, and golden images hold each mode's look.
 #include "../render/gl_fixture.h"
 #include "test_city.h"
 
@@ -42,9 +42,9 @@ protected:
 
     Rendered render(testing::TestCity& city, const SceneImpostors& impostors, RenderMode mode,
                     const scene::CameraPose& pose, uint32_t frames = 1, uint32_t samples = 1,
-                    bool occludeBillboards = true) {
+                    bool dropHidden = true) {
         CityRendererOptions options;
-        options.occludeBillboards = occludeBillboards;
+        options.dropHidden = dropHidden;
         options.width = kWidth;
         options.height = kHeight;
         options.mode = mode;
@@ -164,20 +164,30 @@ TEST_F(CityRendererTest, MultisampledTreeBillboardsCoverWhatTheirTreesCover) {
     EXPECT_GT(psnr[1], psnr[0] - 2.0) << "multisampled billboards cover more than their trees";
 }
 
-TEST_F(CityRendererTest, BillboardsHiddenBehindBuildingsAreDroppedWithoutChangingAPixel) {
-    // At street level most far trees stand behind the blocks in front of them.
+TEST_F(CityRendererTest, HiddenImpostorsAndBillboardsAreDroppedWithoutChangingAPixel) {
+    // At street level most far trees and facades stand behind the blocks in front of them.
     testing::TestCity city = testing::makeCity(50, 200);
     const SceneImpostors impostors = bake(city);
     const scene::CameraPose pose = lookAt({-200, -230, 2}, {0, 0, 4});
     for (uint32_t samples : {1u, 4u}) {
-        Rendered all = render(city, impostors, RenderMode::AllLod1, pose, 1, samples, false);
-        Rendered culled = render(city, impostors, RenderMode::AllLod1, pose, 1, samples, true);
-        EXPECT_EQ(all.stats.treeBillboardsOccluded, 0u);
-        EXPECT_GT(culled.stats.treeBillboardsOccluded, 0u) << samples << " samples";
-        EXPECT_LT(culled.stats.treeBillboardsOccluded, culled.stats.treeBillboards);
-        std::printf("%u samples: %u of %u billboards hidden\n", samples, culled.stats.treeBillboardsOccluded,
-                    culled.stats.treeBillboards);
-        EXPECT_EQ(culled.image.pixels, all.image.pixels) << samples << " samples";
+        // Forced LOD1: base volumes and billboards; forced LOD3: LOD3 terminals and billboards.
+        for (RenderMode mode : {RenderMode::AllLod1, RenderMode::AllLod3}) {
+            Rendered all = render(city, impostors, mode, pose, 1, samples, false);
+            Rendered culled = render(city, impostors, mode, pose, 1, samples, true);
+            const std::string what =
+                std::string(renderModeName(mode)) + ", " + std::to_string(samples) + " samples";
+            EXPECT_EQ(all.stats.treeBillboardsOccluded + all.stats.lod3Occluded, 0u) << what;
+            EXPECT_GT(culled.stats.treeBillboardsOccluded, 0u) << what;
+            EXPECT_LT(culled.stats.treeBillboardsOccluded, culled.stats.treeBillboards) << what;
+            if (mode == RenderMode::AllLod3) {
+                EXPECT_GT(culled.stats.lod3Occluded, 0u) << what;
+                EXPECT_LT(culled.stats.lod3Occluded, culled.stats.terminalsPerLod[3]) << what;
+            }
+            std::printf("%s: %u of %u billboards and %u of %lu LOD3 terminals hidden\n", what.c_str(),
+                        culled.stats.treeBillboardsOccluded, culled.stats.treeBillboards,
+                        culled.stats.lod3Occluded, culled.stats.terminalsPerLod[3]);
+            EXPECT_EQ(culled.image.pixels, all.image.pixels) << what;
+        }
     }
 }
 

@@ -60,9 +60,9 @@ struct CityRendererOptions {
     // GL time goes, on any GL, timer queries or not. The finishes cost a tiled rasteriser
     // its overlap between passes, so a timed frame is slower than an untimed one.
     bool timePasses = false;
-    // Drops tree billboards whole that the depth drawn before them hides (DepthTiles). Off
-    // only to check that it changes no pixel.
-    bool occludeBillboards = true;
+    // Drops LOD3 impostors and tree billboards whole that the depth drawn before them hides
+    // (DepthTiles). Off only to check that it changes no pixel.
+    bool dropHidden = true;
 };
 
 // The draw passes, in the order a frame runs them.
@@ -81,6 +81,7 @@ struct FrameStats {
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint32_t treeBillboardsOccluded = 0;      // of those, dropped whole as hidden (DepthTiles)
+    uint32_t lod3Occluded = 0;                // LOD3 and LOD3-LOD2 entries dropped as hidden
     uint64_t cacheLookups = 0, cacheHits = 0; // this frame's
     uint64_t cacheBytes = 0;                  // terminal sets in the cache's memory tier
     uint64_t gpuBytes = 0;                    // arena, draw lists, meshes, base volumes, frame target
@@ -140,7 +141,7 @@ private:
     VolumeCache volumes_;
     GroundPass ground_;
     TreePass trees_;
-    DepthTiles depthTiles_;  // for the tree billboards
+    DepthTiles depthTiles_;  // for LOD3 impostors and tree billboards
     double treeError_ = 0.0; // metres; 0: trees are always geometry
     impostor::ImpostorTextures impostorTextures_;
     uint32_t sphereBuffer_ = 0, frameBuffer_ = 0, lod4Vao_ = 0, impostorVao_ = 0;

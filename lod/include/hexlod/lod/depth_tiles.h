@@ -1,7 +1,8 @@
 // The farthest depth of each kDepthTileSize-pixel square tile of the frame's depth target,
-// built by one compute pass (depth_tiles.comp) once the opaque and impostor passes are drawn.
-// A later pass whose fragments write their own depth (the tree billboards), and so cannot be
-// rejected before shading, tests its whole rectangle against it instead (depth_tiles.glsl).
+// built by one compute pass (depth_tiles.comp) from what the frame has drawn so far. A later
+// pass whose fragments write their own depth (LOD3 impostors, tree billboards), and so cannot
+// be rejected before shading, tests each rectangle against it in its vertex shader instead and
+// drops the hidden ones whole (depth_tiles.glsl), counting them per pass.
 #pragma once
 
 #include "hexlod/render/shader_program.h"
@@ -13,6 +14,9 @@ namespace hexlod::lod {
 
 constexpr uint32_t kDepthTileSize = 16;
 
+// The passes that test against the tiles, each with its count of rectangles dropped.
+enum class TileTest : uint32_t { Lod3Impostors, TreeBillboards, Count };
+
 class DepthTiles {
 public:
     DepthTiles() = default;
@@ -22,17 +26,22 @@ public:
 
     // Tiles for a width x height target of `samples` samples per pixel.
     bool init(uint32_t width, uint32_t height, uint32_t samples, std::string& error);
+    // Zeroes the counts of dropped rectangles (once a frame, before the passes).
+    void clearCounts() const;
     // Reduces `depthTexture` (the target's depth attachment) into the tiles. No draw may be
     // in progress into it; the result is visible to later texture fetches.
     void build(uint32_t depthTexture) const;
-    // Binds the tiles to texture unit `unit` and sets depth_tiles.glsl's uniforms of
-    // `program`, which must be in use; `enabled` false makes every rectangle visible.
-    void bind(const render::ShaderProgram& program, uint32_t unit, bool enabled) const;
+    // Binds the tiles to texture unit `unit` and the counts, and sets depth_tiles.glsl's
+    // uniforms of `program` for pass `test`; `enabled` false makes every rectangle visible.
+    void bind(const render::ShaderProgram& program, uint32_t unit, TileTest test, bool enabled) const;
+    // Rectangles `test` dropped since clearCounts(). Waits for the GL.
+    uint32_t dropped(TileTest test) const;
+    bool valid() const { return counts_ != 0; }
     uint64_t byteSize() const { return uint64_t(columns_) * rows_ * sizeof(float); }
 
 private:
     render::ShaderProgram program_;
-    uint32_t texture_ = 0, columns_ = 0, rows_ = 0, samples_ = 1;
+    uint32_t texture_ = 0, counts_ = 0, columns_ = 0, rows_ = 0, samples_ = 1;
 };
 
 } // namespace hexlod::lod

@@ -38,10 +38,7 @@ public:
     // those the frame's tree cut makes billboards). The cull frame must be bound (block 0).
     // Returns the billboards submitted.
     uint32_t draw(uint32_t batch, bool allBillboards) const;
-    // Binds the pass's buffers and textures and zeroes the count of occluded billboards.
     void begin(const render::ShaderProgram& program) const;
-    // Billboards dropped whole since begin(), hidden behind the depth tiles. Waits for the GL.
-    uint32_t occluded() const;
     uint64_t byteSize() const { return bytes_; } // GPU bytes: trees, billboards, species impostors
     bool hasImpostors() const { return textures_.layers() > 0; }
     const render::ShaderProgram& program() const { return program_; }
@@ -52,7 +49,7 @@ private:
     glm::dvec3 origin_{0.0};
     impostor::ImpostorTextures textures_;
     render::ShaderProgram program_;
-    uint32_t byId_ = 0, instances_ = 0, spheres_ = 0, occlusion_ = 0, vao_ = 0;
+    uint32_t byId_ = 0, instances_ = 0, spheres_ = 0, vao_ = 0;
     uint64_t bytes_ = 0;
 };
 
