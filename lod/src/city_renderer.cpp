@@ -107,46 +107,6 @@ bool parseRenderMode(std::string_view name, RenderMode& out) {
     return false;
 }
 
-const char* drawPassName(DrawPass pass) {
-    switch (pass) {
-    case DrawPass::TerminalMeshes:
-        return "terminal_meshes";
-    case DrawPass::Lod0:
-        return "lod0";
-    case DrawPass::Lod1:
-        return "lod1";
-    case DrawPass::Ground:
-        return "ground";
-    case DrawPass::Impostors:
-        return "impostors";
-    case DrawPass::Trees:
-    case DrawPass::Count:
-        break;
-    }
-    return "trees";
-}
-
-// With CityRendererOptions::timePasses, ends each draw pass with glFinish and adds its time to
-// FrameStats::passMs; otherwise does nothing, so an untimed frame never waits between passes.
-class CityRenderer::PassTimer {
-public:
-    PassTimer(bool enabled, FrameStats& stats) : enabled_(enabled), stats_(stats) {
-        if (enabled_) gl::glFinish();
-        start_ = Clock::now();
-    }
-    void end(DrawPass pass) {
-        if (!enabled_) return;
-        gl::glFinish();
-        stats_.passMs[size_t(pass)] += millisecondsSince(start_);
-        start_ = Clock::now();
-    }
-
-private:
-    bool enabled_;
-    FrameStats& stats_;
-    Clock::time_point start_;
-};
-
 struct CityRenderer::Programs {
     render::ShaderProgram lod4, impostor, impostorWall, volume; // impostor: LOD3 ray-cast; impostorWall: LOD2
     std::map<uint32_t, render::ShaderProgram> lod1;             // per building grammar with buildings
@@ -443,7 +403,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glDisable(GL_BLEND);
     gl::glEnable(GL_CULL_FACE);
     gl::glCullFace(GL_BACK);
-    PassTimer timer(options_.timePasses, stats);
+    PassTimer timer(options_.timePasses, stats.passMs);
     if (depthTiles_.valid()) depthTiles_.clearCounts();
     // Opaque geometry first: base volumes and the ground then hide impostors behind them
     // before their fragments are shaded.
@@ -478,8 +438,9 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glDepthFunc(GL_LESS);
     stats.gpuWaitMs = millisecondsSince(stageStart);
     if (depthTiles_.valid()) {
-        stats.treeBillboardsOccluded = depthTiles_.dropped(TileTest::TreeBillboards);
-        stats.lod3Occluded = depthTiles_.dropped(TileTest::Lod3Impostors);
+        const auto dropped = depthTiles_.dropped();
+        stats.treeBillboardsOccluded = dropped[size_t(TileTest::TreeBillboards)];
+        stats.lod3Occluded = dropped[size_t(TileTest::Lod3Impostors)];
     }
     stats.frameMs = millisecondsSince(frameStart);
 

@@ -36,10 +36,10 @@ void DepthTiles::clearCounts() const {
                                   nullptr);
 }
 
-uint32_t DepthTiles::dropped(TileTest test) const {
-    uint32_t count = 0;
-    gl::glGetNamedBufferSubData(counts_, GLintptr(uint32_t(test) * sizeof count), sizeof count, &count);
-    return count;
+std::array<uint32_t, size_t(TileTest::Count)> DepthTiles::dropped() const {
+    std::array<uint32_t, size_t(TileTest::Count)> counts{};
+    gl::glGetNamedBufferSubData(counts_, 0, kCountBytes, counts.data());
+    return counts;
 }
 
 void DepthTiles::build(uint32_t depthTexture) const {

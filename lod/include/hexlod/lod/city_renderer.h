@@ -16,6 +16,7 @@
 #include "hexlod/cells/scheduler.h"
 #include "hexlod/impostor/impostor_textures.h"
 #include "hexlod/lod/depth_tiles.h"
+#include "hexlod/lod/draw_pass.h"
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/lod/ground_pass.h"
 #include "hexlod/lod/scene_impostors.h"
@@ -65,10 +66,6 @@ struct CityRendererOptions {
     bool dropHidden = true;
 };
 
-// The draw passes, in the order a frame runs them.
-enum class DrawPass : uint8_t { TerminalMeshes, Lod0, Lod1, Ground, Impostors, Trees, Count };
-const char* drawPassName(DrawPass pass); // "terminal_meshes", "impostors", "lod0", ...
-
 struct FrameStats {
     uint64_t frame = 0;
     // CPU milliseconds per stage; frameMs is the whole frame's wall time, GPU work included
@@ -87,7 +84,7 @@ struct FrameStats {
     uint64_t gpuBytes = 0;                    // arena, draw lists, meshes, base volumes, frame target
     uint64_t impostorBytes = 0;               // impostor textures
     // GL milliseconds per draw pass, with CityRendererOptions::timePasses; 0 otherwise.
-    std::array<double, size_t(DrawPass::Count)> passMs{};
+    PassTimes passMs{};
     uint64_t residentBytes() const { return cacheBytes + gpuBytes + impostorBytes; }
 };
 
@@ -119,7 +116,6 @@ private:
         bool textured;   // LOD0's wall texture (not under terminals)
         float lod0Blend; // 1: LOD0; below 1: LOD1, blending into LOD0
     };
-    class PassTimer;
     // LOD4 meshes; also counts every terminal drawn, per LOD, into stats.
     void drawTerminalMeshes(FrameStats& stats, PassTimer& timer);
     // LOD2 and LOD3; LOD3 ray-casts from the unprojected screen (inverseViewProjection).

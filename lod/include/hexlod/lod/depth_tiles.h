@@ -7,6 +7,8 @@
 
 #include "hexlod/render/shader_program.h"
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -34,8 +36,8 @@ public:
     // Binds the tiles to texture unit `unit` and the counts, and sets depth_tiles.glsl's
     // uniforms of `program` for pass `test`; `enabled` false makes every rectangle visible.
     void bind(const render::ShaderProgram& program, uint32_t unit, TileTest test, bool enabled) const;
-    // Rectangles `test` dropped since clearCounts(). Waits for the GL.
-    uint32_t dropped(TileTest test) const;
+    // Rectangles each test dropped since clearCounts(), by TileTest. Waits for the GL.
+    std::array<uint32_t, size_t(TileTest::Count)> dropped() const;
     bool valid() const { return counts_ != 0; }
     uint64_t byteSize() const { return uint64_t(columns_) * rows_ * sizeof(float); }
 
