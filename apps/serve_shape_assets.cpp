@@ -57,33 +57,37 @@ AssetBytes readFile(const std::string& path) {
     return share(std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {}));
 }
 
-// The facade impostors' files, per (grammar, shape). False with a reason when one cannot be
-// encoded.
+// One baked atlas as served files: PNGs encoded here, the EXR read back from the store.
+bool impostorAsset(const impostor::ImpostorAtlas& atlas, uint32_t layer,
+                   const std::optional<impostor::ImpostorStore>& store, server::ImpostorAsset& asset,
+                   std::string& error) {
+    asset.key = atlas.contentKey;
+    asset.layer = layer;
+    asset.centre = array3(atlas.centre);
+    asset.radius = atlas.radius;
+    asset.boundsMin = array3(atlas.boundsMin);
+    asset.boundsMax = array3(atlas.boundsMax);
+    std::vector<uint8_t> albedo, normal;
+    if (!render::encodePng(atlas.albedo, render::PngTransfer::Srgb, albedo, error) ||
+        !render::encodePng(normalDepthImage(atlas.normalDepth), render::PngTransfer::Data, normal, error)) {
+        error = atlas.shape + ": " + error;
+        return false;
+    }
+    asset.albedoPng = share(std::move(albedo));
+    asset.normalPng = share(std::move(normal));
+    if (store) asset.exr = readFile(store->pathFor(atlas.shape, atlas.contentKey));
+    return true;
+}
+
+// The facade impostors' files, per (grammar, shape), and the tree species' files. False with a
+// reason when one cannot be encoded.
 bool addImpostors(const lod::SceneImpostors& baked, const std::string& storeDirectory,
                   server::ShapeAssets& assets, std::string& error) {
     std::optional<impostor::ImpostorStore> store;
     if (!storeDirectory.empty()) store.emplace(storeDirectory);
     std::vector<server::ImpostorAsset> layers(baked.facades.size());
-    for (size_t i = 0; i < baked.facades.size(); ++i) {
-        const impostor::ImpostorAtlas& atlas = baked.facades[i];
-        server::ImpostorAsset& asset = layers[i];
-        asset.key = atlas.contentKey;
-        asset.layer = uint32_t(i);
-        asset.centre = array3(atlas.centre);
-        asset.radius = atlas.radius;
-        asset.boundsMin = array3(atlas.boundsMin);
-        asset.boundsMax = array3(atlas.boundsMax);
-        std::vector<uint8_t> albedo, normal;
-        if (!render::encodePng(atlas.albedo, render::PngTransfer::Srgb, albedo, error) ||
-            !render::encodePng(normalDepthImage(atlas.normalDepth), render::PngTransfer::Data, normal,
-                               error)) {
-            error = atlas.shape + ": " + error;
-            return false;
-        }
-        asset.albedoPng = share(std::move(albedo));
-        asset.normalPng = share(std::move(normal));
-        if (store) asset.exr = readFile(store->pathFor(atlas.shape, atlas.contentKey));
-    }
+    for (size_t i = 0; i < baked.facades.size(); ++i)
+        if (!impostorAsset(baked.facades[i], uint32_t(i), store, layers[i], error)) return false;
     assets.impostors.resize(baked.facadeLayer.size());
     for (size_t g = 0; g < baked.facadeLayer.size(); ++g) {
         for (const int layer : baked.facadeLayer[g]) {
@@ -91,6 +95,19 @@ bool addImpostors(const lod::SceneImpostors& baked, const std::string& storeDire
         }
     }
     assets.impostorsServed = true;
+    // The baker numbers species as it met them and skips one whose bake fails; only a complete
+    // list pairs each atlas with its parameters, so anything else serves no species.
+    if (baked.species.empty() || baked.species.size() != baked.speciesParameters.size()) return true;
+    for (size_t s = 0; s < baked.species.size(); ++s) {
+        server::SpeciesAsset species;
+        const std::string& name = baked.species[s].shape; // "tree:<species>"
+        species.name = name.rfind("tree:", 0) == 0 ? name.substr(5) : name;
+        species.grammar = baked.speciesGrammar[s];
+        species.parameters = baked.speciesParameters[s];
+        if (!impostorAsset(baked.species[s], uint32_t(s), store, species.impostor, error)) return false;
+        assets.species.push_back(std::move(species));
+    }
+    assets.speciesServed = true;
     return true;
 }
 
@@ -135,13 +152,12 @@ server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const S
         assets.notes.push_back("impostors (EXR, PNG): off (--no-impostors)");
         return assets;
     }
-    bool buildings = false;
-    for (const scene::GrammarBuildings& g : catalog.scene().buildingGrammars)
-        buildings |= !g.buildings.empty();
-    if (!buildings) {
-        // Facade impostors are all the service hands out: without buildings there is nothing
-        // to bake, so no GL context is made either.
-        assets.notes.push_back("impostors (EXR, PNG): none needed (the scene has no buildings)");
+    bool members = false;
+    for (const auto* grammars : {&catalog.scene().buildingGrammars, &catalog.scene().treeGrammars})
+        for (const scene::GrammarBuildings& g : *grammars) members |= !g.buildings.empty();
+    if (!members) {
+        // Without buildings or trees there is nothing to bake, so no GL context is made either.
+        assets.notes.push_back("impostors (EXR, PNG): none needed (the scene has no buildings and no trees)");
         return assets;
     }
     render::GlContextResult gl = render::createGlContext({setup.render.backend, true});
@@ -152,7 +168,6 @@ server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const S
     }
     assets.notes.push_back(glContextNote(*gl.context) + ", for the impostor bake only");
     lod::SceneImpostorOptions options = sceneImpostorOptions(setup.render);
-    options.treeSpecies = false; // clients draw trees from their terminal sets
     lod::SceneImpostors baked;
     lod::SceneImpostorReport report;
     std::string error;
@@ -169,12 +184,15 @@ server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const S
         return assets;
     }
     assets.impostorLayout = impostorLayoutJson(options.facadeLayout);
+    if (assets.speciesServed) assets.speciesLayout = impostorLayoutJson(options.treeLayout);
     appendImpostorNotes(report, assets.notes);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    assets.notes.push_back("impostors (EXR, PNG): facade shapes only (tree species are not served); " +
-                           std::to_string(assets.byteSize() >> 10) +
-                           " KiB of meshes and impostor files, built in " +
-                           std::to_string(int(seconds * 1000.0)) + " ms");
+    const std::string trees = assets.speciesServed ? std::to_string(assets.species.size()) + " tree species"
+                              : report.treeSpecies ? "tree species not served (a species failed to bake)"
+                                                   : "no tree species";
+    assets.notes.push_back(
+        "impostors (EXR, PNG): facade shapes and " + trees + "; " + std::to_string(assets.byteSize() >> 10) +
+        " KiB of meshes and impostor files, built in " + std::to_string(int(seconds * 1000.0)) + " ms");
     return assets;
 }
 

@@ -1,7 +1,7 @@
 // What `hexlod serve` builds before it answers: every declared shape's mesh as .glb, and the
-// impostors of the facade shapes the scene's buildings emit, baked (or loaded from the EXR
-// store) in a GL context that lives only for the bake. Without a GL context, or with
-// impostors off, the service serves meshes only and says why in its notes.
+// impostors of the facade shapes the scene's buildings emit and of the tree species its trees
+// use, baked (or loaded from the EXR store) in a GL context that lives only for the bake. Without a GL
+// context, or with impostors off, the service serves meshes only and says why in its notes.
 #pragma once
 
 #include "city_session.h"

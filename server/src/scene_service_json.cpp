@@ -38,6 +38,18 @@ Json vec3Json(const std::array<float, 3>& v) {
     return {decimal(v[0]), decimal(v[1]), decimal(v[2])};
 }
 
+// An impostor's files and sphere; `url(suffix)` names its files.
+template <typename UrlOf> Json impostorJson(const ImpostorAsset& impostor, const UrlOf& url) {
+    return {{"albedo_url", url(".albedo.png")},
+            {"normal_url", url(".normal.png")},
+            {"exr_url", impostor.exr ? Json(url(".exr")) : Json(nullptr)},
+            {"centre", vec3Json(impostor.centre)},
+            {"radius", decimal(impostor.radius)},
+            {"bounds_min", vec3Json(impostor.boundsMin)},
+            {"bounds_max", vec3Json(impostor.boundsMax)},
+            {"layer", impostor.layer}};
+}
+
 } // namespace
 
 std::string SceneService::meshUrl(uint32_t grammar, uint32_t shape) const {
@@ -75,14 +87,33 @@ Json SceneService::shapeJson(uint32_t grammar, uint32_t shape) const {
         out["impostor"] = nullptr;
         return out;
     }
-    out["impostor"] = {{"albedo_url", impostorUrl(grammar, shape, ".albedo.png")},
-                       {"normal_url", impostorUrl(grammar, shape, ".normal.png")},
-                       {"exr_url", impostor->exr ? Json(impostorUrl(grammar, shape, ".exr")) : Json(nullptr)},
-                       {"centre", vec3Json(impostor->centre)},
-                       {"radius", decimal(impostor->radius)},
-                       {"bounds_min", vec3Json(impostor->boundsMin)},
-                       {"bounds_max", vec3Json(impostor->boundsMax)},
-                       {"layer", impostor->layer}};
+    out["impostor"] =
+        impostorJson(*impostor, [&](const char* suffix) { return impostorUrl(grammar, shape, suffix); });
+    return out;
+}
+
+std::string SceneService::speciesImpostorUrl(uint32_t species, const char* suffix) const {
+    const SpeciesAsset* asset = assets_.speciesAt(species);
+    if (!asset) return {};
+    return "/api/v1/tree-impostors/" + std::to_string(species) + "/" + cache::hexDigest(asset->impostor.key) +
+           suffix;
+}
+
+// The species whose billboards the service serves, in the order of their impostors' layers.
+Json SceneService::speciesJson() const {
+    Json out = Json::array();
+    for (uint32_t s = 0; s < assets_.species.size(); ++s) {
+        const SpeciesAsset& species = assets_.species[s];
+        Json parameters = Json::array();
+        for (const float value : species.parameters) parameters.push_back(decimal(value));
+        out.push_back({{"index", s},
+                       {"name", species.name},
+                       {"grammar", species.grammar},
+                       {"parameters", parameters},
+                       {"impostor", impostorJson(species.impostor, [&](const char* suffix) {
+                            return speciesImpostorUrl(s, suffix);
+                        })}});
+    }
     return out;
 }
 
@@ -143,6 +174,8 @@ Json SceneService::staticSummary() const {
            "max_screen_space_error * (1 - hysteresis)"}}},
         {"attributions", scene.attributions},
         {"impostor_layout", assets_.impostorLayout},
+        {"tree_species", speciesJson()},
+        {"tree_impostor_layout", assets_.speciesLayout},
         {"formats",
          {{"terminal_set", grammar::kTerminalSetFormatVersion},
           {"extruded_set", grammar::kExtrudedSetFormatVersion}}},
@@ -151,6 +184,7 @@ Json SceneService::staticSummary() const {
           {"extruded_sets", true},
           {"terminal_meshes", assets_.meshesServed},
           {"impostors", assets_.impostorsServed},
+          {"tree_billboards", assets_.speciesServed},
           {"edits", true},
           {"undo", true},
           {"events", true},
@@ -162,6 +196,7 @@ Json SceneService::staticSummary() const {
           {"building", "/api/v1/buildings/{id}"},
           {"terminal_mesh", "/api/v1/meshes/{grammar}/{shape}/{hash}.glb"},
           {"impostor", "/api/v1/impostors/{grammar}/{shape}/{key}.{albedo.png|normal.png|exr}"},
+          {"tree_impostor", "/api/v1/tree-impostors/{species}/{key}.{albedo.png|normal.png|exr}"},
           {"edits", "/api/v1/edits"},
           {"undo", "/api/v1/edits/undo"},
           {"events", "/api/v1/events"},

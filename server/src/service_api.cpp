@@ -126,6 +126,8 @@ ServiceApi::ServiceApi(SceneService& service, ApiOptions options)
           [this](const RequestContext& c, Respond respond) { shapeMesh(c, std::move(respond)); });
     r.add("GET", "/api/v1/impostors/{grammar}/{shape}/{file}",
           [this](const RequestContext& c, Respond respond) { shapeImpostor(c, std::move(respond)); });
+    r.add("GET", "/api/v1/tree-impostors/{species}/{file}",
+          [this](const RequestContext& c, Respond respond) { speciesImpostor(c, std::move(respond)); });
     r.setFallback(
         [this](const RequestContext& c, Respond respond) { respond(static_.serve(c.target, c.request)); });
 }

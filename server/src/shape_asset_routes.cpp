@@ -1,6 +1,7 @@
-// ServiceApi: the shape asset routes (docs/protocol.md): a terminal shape's mesh as .glb and its
-// impostor's albedo, normal-depth and EXR files. Every URL carries its content key, so a reply
-// is immutable and a stale key gets 404 naming the current URL, as batch content does.
+// ServiceApi: the shape asset routes (docs/protocol.md): a terminal shape's mesh as .glb, its
+// impostor's albedo, normal-depth and EXR files, and the same files of a tree species' impostor. Every URL
+// carries its content key, so a reply is immutable and a stale key gets 404 naming the current URL, as batch
+// content does.
 #include "hexlod/server/service_api.h"
 
 #include "hexlod/cache/batch_key.h"
@@ -61,6 +62,23 @@ Reply staleKey(const std::string& what, const std::string& current) {
     return reply;
 }
 
+// One file of an impostor: `suffix` picks it, a key that is not the impostor's is a 404 naming
+// `currentUrl()`.
+template <typename CurrentUrl>
+Reply impostorFile(const Request& request, const ImpostorAsset& impostor, uint64_t key,
+                   const std::string& suffix, const CurrentUrl& currentUrl) {
+    const AssetBytes* bytes = suffix == ".albedo.png"   ? &impostor.albedoPng
+                              : suffix == ".normal.png" ? &impostor.normalPng
+                              : suffix == ".exr"        ? &impostor.exr
+                                                        : nullptr;
+    if (!bytes)
+        return errorReply(404, "an impostor file is <key>.albedo.png, <key>.normal.png or <key>.exr, not '" +
+                                   suffix + "'");
+    if (impostor.key != key) return staleKey("impostor", currentUrl());
+    if (!*bytes) return errorReply(404, "this impostor was baked without a store: it has no EXR");
+    return immutableBytes(request, impostor.key, suffix == ".exr" ? "image/x-exr" : "image/png", *bytes);
+}
+
 std::string shapeName(const ShapeTarget& t) {
     return "shape " + std::to_string(t.shape) + " of grammar " + std::to_string(t.grammar);
 }
@@ -91,20 +109,33 @@ void ServiceApi::shapeImpostor(const RequestContext& c, Respond respond) const {
         return respond(errorReply(
             404, shapeName(*target) + " has no impostor (the scene does not use it, or it is not a facade "
                                       "shape)"));
-    const AssetBytes* bytes = target->suffix == ".albedo.png"   ? &impostor->albedoPng
-                              : target->suffix == ".normal.png" ? &impostor->normalPng
-                              : target->suffix == ".exr"        ? &impostor->exr
-                                                                : nullptr;
-    if (!bytes)
+    respond(impostorFile(c.request, *impostor, target->key, target->suffix, [&] {
+        return service_.impostorUrl(target->grammar, target->shape, target->suffix.c_str());
+    }));
+}
+
+void ServiceApi::speciesImpostor(const RequestContext& c, Respond respond) const {
+    const ShapeAssets& assets = service_.shapeAssets();
+    const auto species = parseUint32(c.params[0]);
+    const std::string_view file = c.params[1];
+    const auto key = file.size() > 16 ? parseHexDigest(file.substr(0, 16)) : std::nullopt;
+    if (!assets.speciesServed)
         return respond(
-            errorReply(404, "an impostor file is <key>.albedo.png, <key>.normal.png or <key>.exr, not '" +
-                                target->suffix + "'"));
-    if (impostor->key != target->key)
-        return respond(staleKey(
-            "impostor", service_.impostorUrl(target->grammar, target->shape, target->suffix.c_str())));
-    if (!*bytes) return respond(errorReply(404, "this impostor was baked without a store: it has no EXR"));
-    const char* type = target->suffix == ".exr" ? "image/x-exr" : "image/png";
-    respond(immutableBytes(c.request, impostor->key, type, *bytes));
+            errorReply(501, "tree impostors are not served by this service (see notes in /api/v1/scene)"));
+    if (!species)
+        return respond(errorReply(400, "species must be a species index (a whole number), got '" +
+                                           std::string(c.params[0]) + "'"));
+    if (!key)
+        return respond(
+            errorReply(400, "expected <16 hex digits of the key><suffix>, got '" + std::string(file) + "'"));
+    const SpeciesAsset* asset = assets.speciesAt(*species);
+    if (!asset)
+        return respond(errorReply(404, "the scene has " + std::to_string(assets.species.size()) +
+                                           " tree species with impostors; there is no species " +
+                                           std::to_string(*species)));
+    const std::string suffix(file.substr(16));
+    respond(impostorFile(c.request, asset->impostor, *key, suffix,
+                         [&] { return service_.speciesImpostorUrl(*species, suffix.c_str()); }));
 }
 
 } // namespace hexlod::server

@@ -26,16 +26,23 @@ const ImpostorAsset* ShapeAssets::impostor(uint32_t grammar, uint32_t shape) con
     return lookup(impostors, grammar, shape);
 }
 
+const SpeciesAsset* ShapeAssets::speciesAt(uint32_t index) const {
+    return index < species.size() ? &species[index] : nullptr;
+}
+
 uint64_t ShapeAssets::byteSize() const {
     uint64_t bytes = 0;
     std::unordered_set<const void*> seen;
     for (const auto& list : meshes)
         for (const auto& m : list)
             if (m) count(m->glb, seen, bytes);
+    auto files = [&](const ImpostorAsset& i) {
+        for (const AssetBytes* b : {&i.albedoPng, &i.normalPng, &i.exr}) count(*b, seen, bytes);
+    };
     for (const auto& list : impostors)
         for (const auto& i : list)
-            if (i)
-                for (const AssetBytes* b : {&i->albedoPng, &i->normalPng, &i->exr}) count(*b, seen, bytes);
+            if (i) files(*i);
+    for (const SpeciesAsset& s : species) files(s.impostor);
     return bytes;
 }
 

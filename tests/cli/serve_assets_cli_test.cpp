@@ -1,7 +1,8 @@
 // `hexlod serve`'s shape assets as a client sees them, from a real process with a real GL bake
 // (llvmpipe here): a .glb for every declared shape that decodes to the library's mesh, an
-// impostor for exactly the shapes the scene's buildings emit and for nothing else, PNGs of the
-// atlas's size that agree with the EXR the store holds, and a store reused on the next start.
+// impostor for exactly the shapes the scene's buildings emit and for nothing else, one for each
+// tree species with trees, PNGs of the atlas's size that agree with the EXR the store holds, and
+// a store reused on the next start.
 // Without GL (--no-impostors) the meshes are still served and the notes say why impostors are not.
 #include "serve_process.h"
 
@@ -17,6 +18,8 @@
 
 #include <csignal>
 #include <fstream>
+#include <map>
+#include <set>
 
 namespace hexlod::test {
 namespace {
@@ -134,7 +137,52 @@ TEST_F(ServeAssets, ImpostorsForExactlyTheEmittedFacadeShapes) {
     EXPECT_GT(impostors, 0u);
     EXPECT_LT(impostors, declared); // the grammars declare shapes this scene never emits
     EXPECT_EQ(*layers.rbegin() + 1, layers.size()) << "layers are 0..n-1";
-    EXPECT_NE(note(*summary, "impostors (EXR, PNG): facade shapes only"), "");
+    EXPECT_NE(note(*summary, "impostors (EXR, PNG): facade shapes and "), "");
+}
+
+// One full-sphere impostor per species that has trees, keyed by the species' exact parameter
+// values: every tree of the scene finds its own, and nothing else is served.
+TEST_F(ServeAssets, EveryTreeFindsItsSpeciesImpostor) {
+    ASSERT_EQ((*summary)["capabilities"]["tree_billboards"], true) << serve->stderrText();
+    const Json& layout = (*summary)["tree_impostor_layout"];
+    EXPECT_EQ(layout["sphere"], "octahedral");
+    EXPECT_EQ(layout["grid"], 4);
+    EXPECT_EQ(layout["view_resolution"], 32); // twice the facades' texels
+    const Json& species = (*summary)["tree_species"];
+    std::map<std::pair<uint32_t, std::vector<float>>, size_t> byValues;
+    for (size_t s = 0; s < species.size(); ++s) {
+        EXPECT_EQ(species[s]["index"], s);
+        std::vector<float> values;
+        for (const Json& v : species[s]["parameters"]) values.push_back(v.get<float>());
+        EXPECT_TRUE(byValues.emplace(std::pair{species[s]["grammar"].get<uint32_t>(), values}, s).second)
+            << "two species with the same values";
+        EXPECT_EQ((*summary)["grammars"][species[s]["grammar"].get<size_t>()]["kind"], "tree");
+    }
+    std::set<size_t> used;
+    const uint32_t buildingGrammars = uint32_t(built->buildingGrammars.size());
+    for (uint32_t t = 0; t < built->treeGrammars.size(); ++t)
+        for (const grammar::BuildingInput& tree : built->treeGrammars[t].buildings) {
+            const auto found = byValues.find({buildingGrammars + t, tree.parameters});
+            ASSERT_NE(found, byValues.end()) << "tree " << tree.id << " has no species impostor";
+            used.insert(found->second);
+        }
+    EXPECT_EQ(used.size(), species.size()) << "a species without trees was served";
+
+    const Json& impostor = species[0]["impostor"];
+    const auto albedo = connection->get(impostor["albedo_url"]);
+    ASSERT_EQ(albedo.status, 200) << albedo.body;
+    EXPECT_EQ(albedo.header("content-type"), "image/png");
+    EXPECT_EQ(albedo.header("cache-control"), "public, max-age=31536000, immutable");
+    const DecodedPng a = decodePng(albedo.body);
+    EXPECT_EQ(a.width, layout["atlas_size"].get<int>());
+    size_t covered = 0;
+    for (size_t i = 3; i < a.rgba.size(); i += 4) covered += a.rgba[i] > 0;
+    EXPECT_GT(covered, a.rgba.size() / 4 / 50) << "the views show the tree";
+    EXPECT_EQ(connection->get(impostor["albedo_url"], {{"If-None-Match", albedo.header("etag")}}).status,
+              304);
+    EXPECT_EQ(connection->get(impostor["normal_url"]).status, 200);
+    EXPECT_EQ(connection->get(impostor["exr_url"]).status, 200);
+    EXPECT_EQ(impostor["radius"].get<double>() > 1.0, true);
 }
 
 TEST_F(ServeAssets, TheLayoutListsEveryViewWithItsFrame) {
@@ -263,22 +311,21 @@ TEST(ServeAssetsWithoutGl, MeshesAreServedAndTheNotesSayWhyImpostorsAreNot) {
     EXPECT_EQ(serve.stop(SIGTERM), 0);
 }
 
-TEST(ServeAssetsWithoutBuildings, NothingIsBakedAndNoGlContextIsMade) {
+TEST(ServeAssetsWithoutBuildings, TreesGetTheirSpeciesAndNoFacadeIsBaked) {
     TemporaryFolder folder;
     SmallScene trees;
     trees.buildings = 0;
     trees.trees = 30;
     const std::string scene = writeSmallScene(folder.path(), trees);
     ServeProcess serve(serveArguments(folder, scene));
-    ASSERT_TRUE(serve.waitUntilServing()) << serve.stderrText();
-    EXPECT_EQ(serve.stderrText().find("gl: "), std::string::npos) << serve.stderrText();
+    ASSERT_TRUE(serve.waitUntilServing(std::chrono::seconds(120))) << serve.stderrText();
     http_client::Connection c("127.0.0.1", serve.port());
     const Json s = Json::parse(c.get("/api/v1/scene").body);
-    EXPECT_EQ(s["capabilities"]["impostors"], false);
-    EXPECT_EQ(s["capabilities"]["terminal_meshes"], true);
-    EXPECT_EQ(note(s, "impostors (EXR, PNG):"),
-              "impostors (EXR, PNG): none needed (the scene has no buildings)");
-    EXPECT_FALSE(std::filesystem::exists(folder.file("store")));
+    EXPECT_EQ(s["capabilities"]["tree_billboards"], true);
+    EXPECT_FALSE(s["tree_species"].empty());
+    for (const Json& grammar : s["grammars"])
+        for (const Json& shape : grammar["shapes"]) EXPECT_TRUE(shape["impostor"].is_null()) << shape["name"];
+    EXPECT_NE(note(s, "impostors: 0 of "), "") << "no facade shape baked";
     EXPECT_EQ(serve.stop(SIGTERM), 0);
 }
 

@@ -22,7 +22,8 @@ std::string text(const server::AssetBytes& b) {
 }
 
 // Grammar 0: shape 0 has a mesh and an impostor baked without a store (no EXR), shape 1 a
-// mesh only; grammar 1 has one shape with a mesh and a stored impostor.
+// mesh only; grammar 1 has one shape with a mesh and a stored impostor; the last grammar has
+// one tree species, baked without a store.
 server::ShapeAssets handMadeAssets(const server::SceneService& service) {
     server::ShapeAssets assets;
     const size_t grammars =
@@ -45,7 +46,17 @@ server::ShapeAssets handMadeAssets(const server::SceneService& service) {
     impostor.exr = bytes("exr file");
     assets.impostors[1].push_back(impostor);
     assets.impostorLayout = {{"sphere", "hemi-octahedral"}, {"grid", 8}};
-    assets.meshesServed = assets.impostorsServed = true;
+    server::SpeciesAsset species;
+    species.name = "oak";
+    species.grammar = uint32_t(grammars - 1);
+    species.parameters = {3.8f, 0.7f};
+    species.impostor.key = 0x7ee;
+    species.impostor.radius = 8.5f;
+    species.impostor.albedoPng = bytes("oak albedo");
+    species.impostor.normalPng = bytes("oak normal");
+    assets.species.push_back(species);
+    assets.speciesLayout = {{"sphere", "octahedral"}, {"grid", 8}};
+    assets.meshesServed = assets.impostorsServed = assets.speciesServed = true;
     assets.notes = {"terminal meshes (glTF): 3 hand-made meshes"};
     return assets;
 }
@@ -131,6 +142,33 @@ TEST_F(ShapeAssetRoutes, AStaleKeyNamesTheCurrentUrl) {
     EXPECT_EQ(impostor.header("x-hexlod-current"), "/api/v1/impostors/0/0/000000000000feed.normal.png");
 }
 
+TEST_F(ShapeAssetRoutes, TreeSpeciesAreListedWithTheirExactValuesAndServed) {
+    const Json s = live->getJson("/api/v1/scene");
+    EXPECT_EQ(s["capabilities"]["tree_billboards"], true);
+    EXPECT_EQ(s["tree_impostor_layout"]["sphere"], "octahedral");
+    ASSERT_EQ(s["tree_species"].size(), 1u);
+    const Json& oak = s["tree_species"][0];
+    EXPECT_EQ(oak["name"], "oak");
+    EXPECT_EQ(oak["index"], 0);
+    EXPECT_EQ(oak["parameters"], Json({3.8, 0.7})) << "shortest decimals of the floats";
+    EXPECT_EQ(oak["impostor"]["albedo_url"], "/api/v1/tree-impostors/0/00000000000007ee.albedo.png");
+    EXPECT_TRUE(oak["impostor"]["exr_url"].is_null());
+    EXPECT_EQ(oak["impostor"]["radius"], 8.5);
+    const auto albedo = live->get("/api/v1/tree-impostors/0/00000000000007ee.albedo.png");
+    ASSERT_EQ(albedo.status, 200);
+    EXPECT_EQ(albedo.body, "oak albedo");
+    EXPECT_EQ(albedo.header("content-type"), "image/png");
+    EXPECT_EQ(albedo.header("cache-control"), "public, max-age=31536000, immutable");
+    EXPECT_EQ(live->get("/api/v1/tree-impostors/0/00000000000007ee.albedo.png",
+                        {{"If-None-Match", albedo.header("etag")}})
+                  .status,
+              304);
+    EXPECT_EQ(live->get("/api/v1/tree-impostors/0/00000000000007ee.normal.png").body, "oak normal");
+    const auto stale = live->get("/api/v1/tree-impostors/0/0000000000000001.normal.png");
+    EXPECT_EQ(stale.status, 404);
+    EXPECT_EQ(stale.header("x-hexlod-current"), "/api/v1/tree-impostors/0/00000000000007ee.normal.png");
+}
+
 TEST_F(ShapeAssetRoutes, MalformedAndUnknownTargetsSayWhy) {
     const struct {
         const char* target;
@@ -150,6 +188,14 @@ TEST_F(ShapeAssetRoutes, MalformedAndUnknownTargetsSayWhy) {
         {"/api/v1/impostors/0/0/000000000000feed.png", 404, "<key>.albedo.png"},
         {"/api/v1/impostors/0/0/000000000000feed.albedo.png.exr", 404, "<key>.albedo.png"},
         {"/api/v1/meshes/0/0", 404, ""},
+        {"/api/v1/tree-impostors/x/00000000000007ee.albedo.png", 400, "species must be"},
+        {"/api/v1/tree-impostors/-1/00000000000007ee.albedo.png", 400, "species must be"},
+        {"/api/v1/tree-impostors/0/7ee.albedo.png", 400, "16 hex digits"},
+        {"/api/v1/tree-impostors/0/00000000000007ee", 400, "16 hex digits"},
+        {"/api/v1/tree-impostors/1/00000000000007ee.albedo.png", 404, "there is no species 1"},
+        {"/api/v1/tree-impostors/0/00000000000007ee.exr", 404, "without a store"},
+        {"/api/v1/tree-impostors/0/00000000000007ee.jpg", 404, "<key>.albedo.png"},
+        {"/api/v1/tree-impostors/0", 404, ""},
     };
     for (const auto& c : cases) {
         const auto reply = live->get(c.target);
@@ -164,7 +210,12 @@ TEST(ShapeAssets, WithoutAnyTheRoutesSay501AndTheNotesSayWhy) {
     EXPECT_EQ(mesh.status, 501);
     EXPECT_NE(mesh.body.find("terminal meshes are not served"), std::string::npos);
     EXPECT_EQ(live.get("/api/v1/impostors/0/0/0000000000001234.exr").status, 501);
+    const auto tree = live.get("/api/v1/tree-impostors/0/0000000000001234.albedo.png");
+    EXPECT_EQ(tree.status, 501);
+    EXPECT_NE(tree.body.find("tree impostors are not served"), std::string::npos);
     const Json s = live.getJson("/api/v1/scene");
+    EXPECT_EQ(s["capabilities"]["tree_billboards"], false);
+    EXPECT_TRUE(s["tree_species"].empty());
     EXPECT_EQ(s["capabilities"]["terminal_meshes"], false);
     EXPECT_TRUE(s["impostor_layout"].is_null());
     EXPECT_TRUE(s["grammars"][0]["shapes"][0]["mesh_url"].is_null());
@@ -178,7 +229,12 @@ TEST(ShapeAssets, ByteSizeCountsSharedBytesOnce) {
     impostor.albedoPng = bytes("abc");
     impostor.normalPng = bytes("de");
     assets.impostors = {{impostor}, {std::nullopt}};
-    EXPECT_EQ(assets.byteSize(), 15u);
+    server::SpeciesAsset species;
+    species.impostor.albedoPng = bytes("fghi");
+    species.impostor.normalPng = impostor.normalPng; // shared: counted once
+    assets.species = {species};
+    EXPECT_EQ(assets.byteSize(), 19u);
+    EXPECT_EQ(assets.speciesAt(1), nullptr);
     EXPECT_EQ(text(assets.mesh(1, 0)->glb), "0123456789");
     EXPECT_EQ(assets.mesh(2, 0), nullptr);
     EXPECT_EQ(assets.mesh(0, 1), nullptr);

@@ -108,6 +108,8 @@ public:
     // "/api/v1/impostors/{grammar}/{shape}/{key}" + suffix (".albedo.png", ".normal.png",
     // ".exr"); empty when the shape has no impostor.
     std::string impostorUrl(uint32_t grammar, uint32_t shape, const char* suffix) const;
+    // "/api/v1/tree-impostors/{species}/{key}" + suffix; empty when no such species is served.
+    std::string speciesImpostorUrl(uint32_t species, const char* suffix) const;
 
     // Write side, one thread at a time.
     EditOutcome edit(const EditSpec& edit);
@@ -150,6 +152,7 @@ private:
     PayloadOutcome staleOutcome(PayloadKind kind, uint32_t batch) const;
     nlohmann::json staticSummary() const;
     nlohmann::json shapeJson(uint32_t grammar, uint32_t shape) const;
+    nlohmann::json speciesJson() const;
     std::string buildIndex() const; // under stateMutex_ shared
 
     ServiceOptions options_;

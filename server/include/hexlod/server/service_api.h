@@ -36,8 +36,9 @@ public:
 
 private:
     void content(PayloadKind kind, const RequestContext& context, Respond respond) const;
-    void shapeMesh(const RequestContext& context, Respond respond) const;     // shape_asset_routes.cpp
-    void shapeImpostor(const RequestContext& context, Respond respond) const; // shape_asset_routes.cpp
+    void shapeMesh(const RequestContext& context, Respond respond) const;       // shape_asset_routes.cpp
+    void shapeImpostor(const RequestContext& context, Respond respond) const;   // shape_asset_routes.cpp
+    void speciesImpostor(const RequestContext& context, Respond respond) const; // shape_asset_routes.cpp
     void postEdit(const RequestContext& context, Respond respond) const;
     void postUndo(const RequestContext& context, Respond respond) const;
     void events(const RequestContext& context, Respond respond) const;

@@ -1,7 +1,8 @@
 // What the service hands out per terminal shape besides batch content: the shape's mesh as
 // .glb and, for shapes the scene's buildings emit, its impostor views (albedo PNG, normal and
-// depth PNG, the EXR of the store). They are built once before the service starts serving
-// (the app builds them with the render and lod modules, which need meshes and GL; the service
+// depth PNG, the EXR of the store); and per tree species with trees its full-sphere impostor,
+// which clients draw as the species' billboard far from the camera. They are built once before the service
+// starts serving (the app builds them with the render and lod modules, which need meshes and GL; the service
 // itself stays free of both) and never change: parameter edits do not touch a shape's mesh,
 // so every URL is content-addressed and immutable.
 #pragma once
@@ -35,18 +36,30 @@ struct ImpostorAsset {
     AssetBytes exr;       // the store's file; null when baked without a store
 };
 
+// A tree species: the trees of tree grammar `grammar` whose parameters are exactly these
+// floats (an edited tree no longer matches, and is drawn from its terminals).
+struct SpeciesAsset {
+    std::string name;
+    uint32_t grammar = 0; // a tree grammar, scene order
+    std::vector<float> parameters;
+    ImpostorAsset impostor; // layer: the species index
+};
+
 struct ShapeAssets {
     // [grammar][shape] in the scene's grammar order; a missing entry is not served.
     std::vector<std::vector<std::optional<MeshAsset>>> meshes;
     std::vector<std::vector<std::optional<ImpostorAsset>>> impostors;
     // The facade view layout every impostor above shares (docs/protocol.md); null without any.
     nlohmann::json impostorLayout;
-    bool meshesServed = false, impostorsServed = false;
+    std::vector<SpeciesAsset> species;
+    nlohmann::json speciesLayout; // the full-sphere layout of every species impostor; null without
+    bool meshesServed = false, impostorsServed = false, speciesServed = false;
     // What was built or left out and why, for /api/v1/scene's notes.
     std::vector<std::string> notes;
 
     const MeshAsset* mesh(uint32_t grammar, uint32_t shape) const;
     const ImpostorAsset* impostor(uint32_t grammar, uint32_t shape) const;
+    const SpeciesAsset* speciesAt(uint32_t index) const;
     uint64_t byteSize() const;
 };
 
