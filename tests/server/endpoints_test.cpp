@@ -205,11 +205,13 @@ TEST_F(Endpoints, BuildingEditsHistoryHealthAndMetrics) {
     EXPECT_EQ(health["status"], "ok");
 
     // A request is counted once its reply is written, which may be just after the client has
-    // read it: give the last ones a moment.
+    // read it, and on any of the I/O threads: give each of the last ones a moment.
     http_client::Response metrics;
     for (int attempt = 0; attempt < 50; ++attempt) {
         metrics = live->get("/metrics");
-        if (metrics.body.find("route=\"GET /healthz\"") != std::string::npos) break;
+        if (metrics.body.find("route=\"GET /healthz\"") != std::string::npos &&
+            metrics.body.find("route=\"GET /api/v1/edits\",status=\"200\"") != std::string::npos)
+            break;
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     ASSERT_EQ(metrics.status, 200);
