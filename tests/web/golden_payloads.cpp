@@ -135,9 +135,10 @@ Json extrudedExpectation(const std::vector<uint8_t>& payload) {
             {"elements", elements}};
 }
 
-Json layoutExpectation(uint32_t grid) {
+Json layoutExpectation(uint32_t grid, impostor::ViewSphere sphere) {
     impostor::ViewLayout layout;
     layout.grid = grid;
+    layout.sphere = sphere;
     Json views = Json::array();
     for (uint32_t i = 0; i < layout.viewCount(); ++i) {
         const glm::vec3 d = layout.direction(i);
@@ -150,8 +151,8 @@ Json layoutExpectation(uint32_t grid) {
     }
     Json positions = Json::array();
     const glm::vec3 probes[] = {
-        {0, 0, 1},           {0.3f, 0.2f, 0.9f}, {-0.7f, 0.1f, 0.2f}, {0.1f, -0.9f, 0.05f},
-        {0.5f, 0.5f, -0.5f}, {1, 0, 0},          {-0.2f, 0.6f, 0.7f}};
+        {0, 0, 1}, {0.3f, 0.2f, 0.9f},  {-0.7f, 0.1f, 0.2f},  {0.1f, -0.9f, 0.05f}, {0.5f, 0.5f, -0.5f},
+        {1, 0, 0}, {-0.2f, 0.6f, 0.7f}, {-0.3f, 0.4f, -0.8f}, {0.2f, -0.1f, -0.9f}};
     for (const glm::vec3& p : probes) {
         const glm::vec3 d = glm::normalize(p);
         positions.push_back(
@@ -159,6 +160,7 @@ Json layoutExpectation(uint32_t grid) {
              {"grid_position", Json::array({layout.gridPosition(d).x, layout.gridPosition(d).y})}});
     }
     return {{"grid", grid},
+            {"sphere", sphere == impostor::ViewSphere::Hemisphere ? "hemi-octahedral" : "octahedral"},
             {"view_resolution", layout.viewResolution},
             {"padding", layout.padding},
             {"views", views},
@@ -191,7 +193,11 @@ int main(int argc, char** argv) {
             write(out / (std::string(name) + ".hxe"), extruded);
             write(out / (std::string(name) + ".hxe.json"), extrudedExpectation(extruded));
         }
-        write(out / "view_layout.json", Json::array({layoutExpectation(8), layoutExpectation(5)}));
+        write(out / "view_layout.json",
+              Json::array({layoutExpectation(8, impostor::ViewSphere::Hemisphere),
+                           layoutExpectation(5, impostor::ViewSphere::Hemisphere),
+                           layoutExpectation(8, impostor::ViewSphere::FullSphere),
+                           layoutExpectation(5, impostor::ViewSphere::FullSphere)}));
         std::cout << "web_golden_payloads: wrote " << out.string() << "\n";
     } catch (const std::exception& e) {
         std::cerr << "web_golden_payloads: " << e.what() << "\n";

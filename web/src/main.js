@@ -7,6 +7,7 @@ import { CameraControls } from './camera/controls.js';
 import { EditClient } from './edits/edit_client.js';
 import { makeExtrudedMaterial } from './render/extruded_mesh.js';
 import { ImpostorSet } from './render/impostors.js';
+import { TreeImpostors } from './render/tree_impostors.js';
 import { ShapeLibrary } from './render/shape_library.js';
 import { World } from './render/world.js';
 import { Streamer } from './stream/streamer.js';
@@ -45,13 +46,17 @@ async function start() {
     let index = await getJson('/api/v1/cells');
     document.title = `hexlod: ${scene.name}`;
     showAttribution(document.getElementById('attribution'), scene);
-    const world = new World(canvas, { antialias: params.get('aa') !== '0' });
+    const antialias = params.get('aa') !== '0';
+    const world = new World(canvas, { antialias });
     const capabilities = scene.capabilities ?? {};
     if (!capabilities.terminal_meshes) messages.add('terminal meshes are not served by this service: LOD4 draws stand-in quads', 'notice');
     if (!capabilities.impostors) messages.add('impostors are not served by this service: every terminal is drawn at LOD4', 'notice');
     const libraries = {};
     for (const g of scene.grammars) libraries[g.index] = new ShapeLibrary(g, { meshes: !!capabilities.terminal_meshes });
     const impostors = new ImpostorSet(scene, world.lighting);
+    const trees = new TreeImpostors(scene, world.lighting, { multisampled: antialias });
+    if (scene.counts?.trees > 0 && !capabilities.tree_billboards)
+        messages.add('tree impostors are not served by this service: trees beyond the terminal distance are not drawn', 'notice');
     const terminal = new THREE.MeshLambertMaterial({ vertexColors: true });
     const materials = { extruded: makeExtrudedMaterial(), backing: new THREE.MeshLambertMaterial({ vertexColors: true }), terminal };
     const budgetMiB = Number(params.get('budget') ?? 384);
@@ -60,6 +65,8 @@ async function start() {
         world,
         libraries,
         impostors,
+        trees,
+        treeForm: params.get('trees') ?? 'auto',
         materials,
         budgetBytes: budgetMiB * 1024 * 1024,
         concurrency: Number(params.get('concurrency') ?? 6),
@@ -163,6 +170,7 @@ async function start() {
             aborted: streamer.queue.aborted,
             meshes: capabilities.terminal_meshes ? Object.values(libraries).map((l) => l.status).join(', ') : 'stand-ins (not served: capabilities.terminal_meshes is false)',
             impostors: capabilities.impostors ? impostors.status : 'off (not served: capabilities.impostors is false)',
+            trees: capabilities.tree_billboards ? trees.status : 'off (not served: capabilities.tree_billboards is false)',
             loadTime,
             versions: streamer.versions(selection?.cell && streamer.cells.find((c) => c.q === selection.cell[0] && c.r === selection.cell[1])),
             events: eventStatus,

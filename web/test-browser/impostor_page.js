@@ -13,7 +13,8 @@ for (let y = 0; y < size; ++y)
     for (let x = 0; x < size; ++x) {
         const tx = x % resolution, ty = y % resolution, view = Math.floor(y / resolution) * grid + Math.floor(x / resolution);
         const inner = tx >= padding && tx < resolution - padding && ty >= padding && ty < resolution - padding;
-        albedoTexels.set([view * 16, 255 - view * 16, 128, inner ? 255 : 0], 4 * (y * size + x));
+        // Premultiplied, as the viewer uploads its albedo atlases: an empty texel is all zero.
+        albedoTexels.set(inner ? [view * 16, 255 - view * 16, 128, 255] : [0, 0, 0, 0], 4 * (y * size + x));
         normalTexels.set([128, 128, 255, 128], 4 * (y * size + x));
     }
 const texture = (texels, colorSpace) => {

@@ -9,7 +9,7 @@
 // (alpha test, no sorting); normals light it with the scene's sun.
 import * as THREE from 'three';
 
-import { IMPOSTOR_VIEWS_GLSL } from './impostor_views.js';
+import { IMPOSTOR_ATLAS_GLSL, IMPOSTOR_VIEWS_GLSL, VIEW_BLEND_GLSL } from './impostor_views.js';
 
 const VERTEX = /* glsl */ `
 uniform vec3 nominal;
@@ -22,6 +22,7 @@ out vec4 vWeights;
 out vec2 vUv0, vUv1, vUv2, vUv3;
 out vec3 vSun;             // the sun in shape space
 ${IMPOSTOR_VIEWS_GLSL}
+${VIEW_BLEND_GLSL}
 vec2 viewUv(float view, vec3 q) {
     vec3 right, up;
     impostorBasis(impostorViewDirection(view, atlasLayout.x), right, up);
@@ -50,12 +51,7 @@ void main() {
         vWeights = vec4(1.0, 0.0, 0.0, 0.0);
         forward = impostorViewDirection(atlasLayout.w, grid);
     } else {
-        vec2 g = impostorGridPosition(toCamera, grid);
-        vec2 base = clamp(floor(g), vec2(0.0), vec2(grid - 2.0));
-        vec2 f = clamp(g - base, 0.0, 1.0);
-        float v = base.y * grid + base.x;
-        vViews = vec4(v, v + 1.0, v + grid, v + grid + 1.0);
-        vWeights = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+        gridBlend(impostorGridPosition(toCamera, grid), grid, vViews, vWeights);
         forward = toCamera;
         forward.z = max(forward.z, 0.0);
         forward = normalize(forward + vec3(0.0, 0.0, 1e-6));
@@ -82,45 +78,30 @@ flat in vec4 vViews;
 in vec4 vWeights;
 in vec2 vUv0, vUv1, vUv2, vUv3;
 in vec3 vSun;
-vec2 atlasUv(float view, vec2 uv) {
-    float grid = atlasLayout.x, resolution = atlasLayout.y, padding = atlasLayout.z;
-    float inner = resolution - 2.0 * padding;
-    vec2 texel = padding + vec2(uv.x * 0.5 + 0.5, 0.5 - uv.y * 0.5) * inner - 0.5;
-    texel = clamp(texel, vec2(padding), vec2(padding + inner - 1.0));
-    vec2 tile = vec2(mod(view, grid), floor(view / grid)) * resolution;
-    return (tile + texel + 0.5) / (grid * resolution);
-}
-void accumulate(float view, vec2 uv, float weight, inout vec4 colour, inout vec3 normal) {
-    if (weight <= 0.0 || abs(uv.x) > 1.0 || abs(uv.y) > 1.0) return;
-    vec2 at = atlasUv(view, uv);
-    vec4 a = texture2D(albedoAtlas, at);
-    vec3 n = texture2D(normalAtlas, at).xyz * 2.0 - 1.0;
-    float w = weight * a.a;
-    colour += vec4(w * a.rgb, w);
-    normal += w * n;
-}
+${IMPOSTOR_ATLAS_GLSL}
 void main() {
-    vec4 colour = vec4(0.0);
-    vec3 normal = vec3(0.0);
-    accumulate(vViews.x, vUv0, vWeights.x, colour, normal);
-    accumulate(vViews.y, vUv1, vWeights.y, colour, normal);
-    accumulate(vViews.z, vUv2, vWeights.z, colour, normal);
-    accumulate(vViews.w, vUv3, vWeights.w, colour, normal);
+    vec4 colour, normalDepth;
+    accumulateViews(albedoAtlas, normalAtlas, atlasLayout.xyz, vViews, vWeights, vUv0, vUv1, vUv2, vUv3, colour,
+                    normalDepth);
     if (colour.a < 0.5) discard;
     vec3 albedo = colour.rgb / colour.a;
-    vec3 n = length(normal) > 0.0 ? normalize(normal) : vec3(0.0, 0.0, 1.0);
+    vec3 n = length(normalDepth.xyz) > 0.0 ? normalize(normalDepth.xyz) : vec3(0.0, 0.0, 1.0);
     gl_FragColor = vec4(albedo * (ambientColour + sunColour * max(dot(n, vSun), 0.0)), 1.0);
     #include <colorspace_fragment>
 }
 `;
 
-function loadTexture(loader, url, srgb) {
+// An atlas PNG as a texture. `colour`: the albedo, sRGB and premultiplied by its coverage on
+// upload, so that filtering between a covered texel and an empty one fades the coverage, not
+// the colour toward the empty texel's; else data (normal and depth), taken as stored.
+export function loadTexture(loader, url, colour) {
     return loader.loadAsync(url).then((texture) => {
         texture.flipY = false; // row 0 of the image is the top row of the atlas, as in the bake
         texture.generateMipmaps = false; // mips would bleed between tiles
         texture.minFilter = THREE.LinearFilter;
         texture.magFilter = THREE.LinearFilter;
-        texture.colorSpace = srgb ? THREE.SRGBColorSpace : THREE.NoColorSpace;
+        texture.colorSpace = colour ? THREE.SRGBColorSpace : THREE.NoColorSpace;
+        texture.premultiplyAlpha = colour;
         texture.needsUpdate = true;
         return texture;
     });

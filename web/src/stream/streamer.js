@@ -13,6 +13,7 @@ import { decodeExtrudedSet } from '../payload/extruded_set.js';
 import { decodeTerminalSet } from '../payload/terminal_set.js';
 import { buildExtrudedGeometry } from '../render/extruded_mesh.js';
 import { TerminalBatch } from '../render/terminal_batch.js';
+import { TreeBillboards } from '../render/tree_billboards.js';
 import { ContentCache } from './content_cache.js';
 import { FetchQueue } from './fetch_queue.js';
 import { decideCell, EXTRUDED, lodDistance, TERMINALS, terminalLodDistances } from './lod_policy.js';
@@ -20,12 +21,14 @@ import { decideCell, EXTRUDED, lodDistance, TERMINALS, terminalLodDistances } fr
 const BACKING_INSET = 0.5; // metres: base volumes behind terminal facades, as the native renderer
 
 export class Streamer {
-    constructor({ scene, world, libraries, impostors, materials, budgetBytes, concurrency, onError, onStale }) {
+    constructor({ scene, world, libraries, impostors, trees, treeForm = 'auto', materials, budgetBytes, concurrency, onError, onStale }) {
         this.scene = scene;
         this.profile = scene.lod;
         this.world = world;
         this.libraries = libraries; // per grammar index: ShapeLibrary
         this.impostors = impostors;
+        this.trees = trees; // TreeImpostors: species billboards
+        this.treeForm = treeForm; // 'auto' (by distance), every tree as 'terminals' or 'billboards', or 'none'
         this.materials = materials; // {extruded, backing, terminal}
         this.onError = onError;
         this.cells = [];
@@ -72,6 +75,7 @@ export class Streamer {
 
     dispose(value) {
         value.terminals?.dispose();
+        value.billboards?.dispose();
         value.lod0?.geometry.dispose();
         value.backing?.geometry.dispose();
     }
@@ -82,6 +86,13 @@ export class Streamer {
 
     // Builds (once) and returns the object a content entry is drawn with.
     object(url, value, variant) {
+        if (value.kind === 'extruded' && variant === 'billboards') {
+            if (!value.billboards) {
+                value.billboards = new TreeBillboards(value.set, this.trees);
+                this.cache.grow(url, value.billboards.gpuBytes);
+            }
+            return value.billboards.group;
+        }
         if (value.kind === 'extruded') {
             if (!value[variant]) {
                 const inset = variant === 'backing' ? BACKING_INSET : 0;
@@ -106,12 +117,12 @@ export class Streamer {
         camera.updateMatrixWorld();
         this.frustum.setFromProjectionMatrix(new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse));
         const distances = terminalLodDistances(this.profile, view);
-        // Trees are terminals only near the camera: beyond LOD2's distance the native renderer draws
-        // them as billboards of their species' impostor, which this API does not serve.
+        // Trees are terminals only near the camera: beyond LOD2's distance they are billboards of
+        // their species' impostor (updateTrees), as in the native renderer.
         const treeDistance = lodDistance(this.profile.geometric_error[2], this.profile, view.fovY, view.viewportHeight);
         const requests = [];
         const pinned = new Set();
-        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 } };
+        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, billboards: 0, treesAsTerminals: 0 };
         const p = view.position;
         for (const cell of this.cells) {
             const decision = decideCell(this.lodOf.get(cell.id), cell.bounds, view, this.profile);
@@ -131,27 +142,20 @@ export class Streamer {
             }
             const sse = Math.min(decision.sse, 1e6);
             const objects = [];
+            const frame = { cell, visible, sse, distances, p, stats, objects, pinned, requests };
             for (const b of cell.batches) {
-                const tree = this.grammar(b.grammar)?.kind === 'tree';
-                const wantTerminals = decision.lod === TERMINALS && (!tree || decision.distance < treeDistance);
-                const wantExtruded = !tree;
-                if (wantExtruded && !this.cache.has(b.extruded_set)) requests.push({ url: b.extruded_set, kind: 'extruded', grammar: b.grammar, priority: (visible ? 3e6 : 1e6) + sse });
-                if (wantTerminals && !this.cache.has(b.terminal_set)) requests.push({ url: b.terminal_set, kind: 'terminal', grammar: b.grammar, priority: (visible ? 2e6 : 0) + sse });
-                const pick = (url, old) => (this.cache.has(url) ? url : old && this.cache.has(old) ? old : null);
-                const ext = pick(b.extruded_set, b.shown.extruded);
-                let term = wantTerminals || decision.lod === EXTRUDED ? pick(b.terminal_set, b.shown.terminal) : null;
-                if (term && !(this.libraries[b.grammar]?.isReady && this.impostors.isReady)) term = null;
-                if (decision.lod === EXTRUDED && ext) term = null; // LOD0 is enough here
-                if (!wantTerminals && tree) term = null;
-                b.shown = { extruded: ext, terminal: term };
-                if (term) {
-                    const value = this.cache.get(term);
-                    objects.push(this.object(term, value, 'terminals'));
-                    value.terminals.updateLod([p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]], distances);
-                    if (visible) for (const lod of [4, 3, 2]) stats.terminals[lod] += value.terminals.counts[lod];
-                    pinned.add(term);
-                    b.drawn = { url: term, version: value.version, kind: 'terminal' };
+                if (this.grammar(b.grammar)?.kind === 'tree') {
+                    this.updateTrees(b, decision, treeDistance, frame);
+                    continue;
                 }
+                const wantTerminals = decision.lod === TERMINALS;
+                this.request(b, 'extruded', frame);
+                if (wantTerminals) this.request(b, 'terminal', frame);
+                const ext = this.pick(b.extruded_set, b.shown.extruded);
+                let term = wantTerminals || decision.lod === EXTRUDED ? this.pickTerminals(b) : null;
+                if (decision.lod === EXTRUDED && ext) term = null; // LOD0 is enough here
+                b.shown = { extruded: ext, terminal: term };
+                if (term) this.showTerminals(b, term, frame);
                 if (ext) {
                     objects.push(this.object(ext, this.cache.get(ext), term ? 'backing' : 'lod0'));
                     pinned.add(ext);
@@ -170,6 +174,71 @@ export class Streamer {
         this.queue.want(requests);
         this.cache.trim(pinned);
         Object.assign(this.stats, stats);
+    }
+
+    pick(url, old) {
+        return this.cache.has(url) ? url : old && this.cache.has(old) ? old : null;
+    }
+
+    // The terminal set to draw for batch `b` (the wanted one, else the one drawn before), once
+    // its shapes and impostors are loaded.
+    pickTerminals(b) {
+        const term = this.pick(b.terminal_set, b.shown.terminal);
+        return term && this.libraries[b.grammar]?.isReady && this.impostors.isReady ? term : null;
+    }
+
+    request(b, kind, frame) {
+        const url = kind === 'terminal' ? b.terminal_set : b.extruded_set;
+        if (this.cache.has(url)) return;
+        const base = kind === 'terminal' ? (frame.visible ? 2e6 : 0) : frame.visible ? 3e6 : 1e6;
+        frame.requests.push({ url, kind, grammar: b.grammar, priority: base + frame.sse });
+    }
+
+    showTerminals(b, term, frame) {
+        const value = this.cache.get(term);
+        const { cell, p } = frame;
+        frame.objects.push(this.object(term, value, 'terminals'));
+        value.terminals.updateLod([p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]], frame.distances);
+        if (frame.visible) for (const lod of [4, 3, 2]) frame.stats.terminals[lod] += value.terminals.counts[lod];
+        frame.pinned.add(term);
+        b.drawn = { url: term, version: value.version, kind: 'terminal' };
+    }
+
+    // A tree batch: its terminals within LOD2's distance, else billboards from its extruded set
+    // (the trees' positions and parameters) while the service serves species impostors; a batch
+    // with trees of no served species (edited ones) stays terminals at every distance. Until
+    // the wanted form arrives the batch keeps the other one, so trees never blink out.
+    updateTrees(b, decision, treeDistance, frame) {
+        if (this.treeForm === 'none') {
+            b.shown = { extruded: null, terminal: null };
+            b.drawn = null;
+            return;
+        }
+        const near =
+            this.treeForm === 'terminals' || (this.treeForm !== 'billboards' && decision.lod === TERMINALS && decision.distance < treeDistance);
+        let boards = null;
+        if (this.trees.enabled) {
+            this.request(b, 'extruded', frame);
+            const ext = this.pick(b.extruded_set, b.shown.extruded);
+            if (ext && this.trees.isReady) boards = { url: ext, value: this.cache.get(ext) };
+            if (boards) boards.object = this.object(ext, boards.value, 'billboards');
+        }
+        const complete = boards && boards.value.billboards.unmatched === 0;
+        const wantTerminals = near || (boards && !complete);
+        if (wantTerminals) this.request(b, 'terminal', frame);
+        const term = wantTerminals ? this.pickTerminals(b) : null;
+        b.shown = { extruded: boards?.url ?? null, terminal: term };
+        if (boards) frame.pinned.add(boards.url);
+        if (term) {
+            this.showTerminals(b, term, frame);
+            if (frame.visible && !near) frame.stats.treesAsTerminals += boards.value.billboards.unmatched;
+        } else if (boards) {
+            frame.objects.push(boards.object);
+            if (frame.visible) frame.stats.billboards += boards.value.billboards.count;
+            b.drawn = { url: boards.url, version: boards.value.version, kind: 'billboards' };
+        } else {
+            b.drawn = null;
+        }
     }
 
     // The batch versions drawn now that differ from 1 (edited), and those of `cell` if given.

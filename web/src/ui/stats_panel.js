@@ -1,6 +1,7 @@
-// The stats overlay: frame rate, cells per LOD, terminals drawn per LOD, bytes downloaded, the
-// content cache, pending requests, where meshes and impostors come from (or why not), and the
-// versions of the batches drawn (edited ones, and the selected cell's).
+// The stats overlay: frame rate, cells per LOD, terminals drawn per LOD, tree billboards, bytes
+// downloaded, the content cache, pending requests, where meshes, impostors and tree impostors
+// come from (or why not), and the versions of the batches drawn (edited ones, and the selected
+// cell's).
 const MiB = 1024 * 1024;
 
 export class StatsPanel {
@@ -25,10 +26,11 @@ export class StatsPanel {
             `camera ${s.position.map((v) => v.toFixed(1)).join(', ')}`,
             `cells in view ${s.streamer.visible}: LOD0 (extruded) ${s.streamer.cells.extruded}, terminal sets ${s.streamer.cells.terminals}`,
             `terminals drawn: LOD4 ${s.streamer.terminals[4]}, LOD3 ${s.streamer.terminals[3]}, LOD2 ${s.streamer.terminals[2]}`,
+            `tree billboards ${s.streamer.billboards}${s.streamer.treesAsTerminals ? `, ${s.streamer.treesAsTerminals} edited trees far away as terminals` : ''}`,
             `downloaded ${(s.traffic.bytes / MiB).toFixed(2)} MiB in ${s.traffic.requests} requests (${s.traffic.errors} errors)`,
             `cache ${s.cache.entries} payloads, ${(s.cache.bytes / MiB).toFixed(1)} of ${(s.cache.budget / MiB).toFixed(0)} MiB, ${s.cache.evictions} evicted`,
             `requests pending ${s.pending}, in flight ${s.inFlight}, aborted ${s.aborted}`,
-            `meshes ${s.meshes}   impostors ${s.impostors}`,
+            `meshes ${s.meshes}   impostors ${s.impostors}   trees ${s.trees}`,
             s.loadTime !== null ? `first view complete in ${s.loadTime.toFixed(2)} s` : 'loading the first view...',
             `versions: ${s.versions.length ? s.versions.map((v) => `(${v.cell})/${v.grammar} v${v.version}`).join(' ') : 'all v1'}`,
         ];

@@ -1,0 +1,172 @@
+// The tree species' full-sphere impostors (scene.tree_species, scene.tree_impostor_layout; the
+// files of /api/v1/tree-impostors/...), drawn as billboards for trees far from the camera, as
+// the native renderer does (thesis §7.4). A billboard is a camera-facing quad over the species'
+// bounding sphere (centre, radius: tree space, x east, y north, z up, the trunk base at the
+// origin) that blends the four grid views around the direction to the camera by their bilinear
+// weights, each sampled where the quad's point lies in that view's frame. It writes the depth
+// the views store, so a billboard sinks into the ground and behind buildings where the tree
+// does, not where its flat quad would. As in the native renderer, coverage becomes the sample
+// mask on a multisampled canvas (alpha to coverage) and is a cutout at one half otherwise; the
+// stored normals light it with the scene's sun.
+import * as THREE from 'three';
+
+import { loadTexture } from './impostors.js';
+import { FULL_SPHERE, IMPOSTOR_ATLAS_GLSL, TREE_VIEWS_GLSL, VIEW_BLEND_GLSL } from './impostor_views.js';
+
+const VERTEX = /* glsl */ `
+uniform vec4 sphere;      // centre xyz, radius (tree space)
+uniform vec3 atlasLayout; // grid, view resolution, padding
+flat out vec4 vViews;
+out vec4 vWeights;
+out vec2 vUv0, vUv1, vUv2, vUv3;
+// Clip position of the quad point and of one radius toward the camera: the point a view's
+// depth d stands for is at vClip + d * vClipForward (clip space is linear in the position).
+out vec4 vClip, vClipForward;
+${TREE_VIEWS_GLSL}
+${VIEW_BLEND_GLSL}
+vec2 viewUv(float view, vec3 q) {
+    vec3 right, up;
+    treeBasis(treeViewDirection(view, atlasLayout.x), right, up);
+    return vec2(dot(q, right), dot(q, up));
+}
+void main() {
+    // Trees stand upright and unrotated: the instance matrix only carries the tree's base.
+    vec3 centre = (modelMatrix * vec4(instanceMatrix[3].xyz + sphere.xyz, 1.0)).xyz;
+    vec3 forward = cameraPosition - centre;
+    forward = dot(forward, forward) > 1e-12 ? normalize(forward) : vec3(0.0, 0.0, 1.0);
+    float grid = atlasLayout.x;
+    gridBlend(treeGridPosition(forward, grid), grid, vViews, vWeights);
+    vec3 right, up;
+    treeBasis(forward, right, up);
+    vec3 q = position.x * right + position.y * up; // in radii, relative to the centre
+    vUv0 = viewUv(vViews.x, q);
+    vUv1 = viewUv(vViews.y, q);
+    vUv2 = viewUv(vViews.z, q);
+    vUv3 = viewUv(vViews.w, q);
+    mat4 toClip = projectionMatrix * viewMatrix;
+    vClip = toClip * vec4(centre + sphere.w * q, 1.0);
+    vClipForward = toClip * vec4(sphere.w * forward, 0.0);
+    gl_Position = vClip;
+}
+`;
+
+const FRAGMENT = /* glsl */ `
+uniform sampler2D albedoAtlas;
+uniform sampler2D normalAtlas;
+uniform vec3 atlasLayout;
+uniform vec3 sunDirection;
+uniform vec3 sunColour;
+uniform vec3 ambientColour;
+uniform float cutout;
+flat in vec4 vViews;
+in vec4 vWeights;
+in vec2 vUv0, vUv1, vUv2, vUv3;
+in vec4 vClip, vClipForward;
+${IMPOSTOR_ATLAS_GLSL}
+void main() {
+    vec4 colour, normalDepth;
+    accumulateViews(albedoAtlas, normalAtlas, atlasLayout, vViews, vWeights, vUv0, vUv1, vUv2, vUv3, colour, normalDepth);
+    if (colour.a < cutout) discard;
+    vec3 albedo = colour.rgb / colour.a;
+    vec3 n = length(normalDepth.xyz) > 0.0 ? normalize(normalDepth.xyz) : vec3(0.0, 0.0, 1.0);
+    vec4 clip = vClip + (normalDepth.w / colour.a) * vClipForward;
+    gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
+    gl_FragColor = vec4(albedo * (ambientColour + sunColour * max(dot(n, sunDirection), 0.0)), min(colour.a, 1.0));
+    #include <colorspace_fragment>
+}
+`;
+
+// A species' key: its tree grammar and the exact float bits of its parameters.
+function speciesKey(grammar, parameters) {
+    return `${grammar}:${Array.from(new Uint32Array(Float32Array.from(parameters).buffer)).join(',')}`;
+}
+
+export class TreeImpostors {
+    // `multisampled`: whether the canvas has samples for alpha to coverage.
+    constructor(scene, lighting, { multisampled = true } = {}) {
+        this.layout = scene.tree_impostor_layout ?? null;
+        this.lighting = lighting;
+        this.multisampled = multisampled;
+        this.species = []; // by species index: {albedo, normal, impostor, material}
+        this.byKey = new Map();
+        this.failed = [];
+        this.enabled = !!scene.capabilities?.tree_billboards && this.layout?.sphere === FULL_SPHERE;
+        this.quad = new THREE.PlaneGeometry(2, 2);
+        this.isReady = false;
+        this.ready = (this.enabled ? this.load(scene.tree_species ?? []) : Promise.resolve()).then(() => (this.isReady = true));
+    }
+
+    async load(list) {
+        const loader = new THREE.TextureLoader();
+        await Promise.all(
+            list.map((s) =>
+                Promise.all([loadTexture(loader, s.impostor.albedo_url, true), loadTexture(loader, s.impostor.normal_url, false)]).then(
+                    ([albedo, normal]) => {
+                        this.species[s.index] = { albedo, normal, impostor: s.impostor, material: null };
+                        this.byKey.set(speciesKey(s.grammar, s.parameters), s.index);
+                    },
+                    (e) => this.failed.push(`${s.name}: ${e?.message ?? 'could not load its atlas'}`),
+                ),
+            ),
+        );
+    }
+
+    // The species index of a tree of `grammar` with these parameter values, or -1 (an edited
+    // tree, or a species whose atlas failed to load).
+    speciesOf(grammar, parameters) {
+        return this.byKey.get(speciesKey(grammar, parameters)) ?? -1;
+    }
+
+    material(index) {
+        const species = this.species[index];
+        if (species.material) return species.material;
+        const { grid, view_resolution, padding } = this.layout;
+        const imp = species.impostor;
+        species.material = new THREE.ShaderMaterial({
+            vertexShader: VERTEX,
+            fragmentShader: FRAGMENT,
+            alphaToCoverage: this.multisampled,
+            // The canvas is composited with its alpha (three.js asks for an alpha channel): the
+            // coverage that alpha to coverage needs in the fragment's alpha must not reach it, so
+            // colour replaces and the cleared alpha of 1 stays.
+            blending: THREE.CustomBlending,
+            blendEquation: THREE.AddEquation,
+            blendSrc: THREE.OneFactor,
+            blendDst: THREE.ZeroFactor,
+            blendSrcAlpha: THREE.ZeroFactor,
+            blendDstAlpha: THREE.OneFactor,
+            uniforms: {
+                sphere: { value: new THREE.Vector4(...imp.centre, imp.radius) },
+                atlasLayout: { value: new THREE.Vector3(grid, view_resolution, padding) },
+                albedoAtlas: { value: species.albedo },
+                normalAtlas: { value: species.normal },
+                sunDirection: { value: this.lighting.sunDirection },
+                sunColour: { value: this.lighting.sunColour },
+                ambientColour: { value: this.lighting.ambientColour },
+                cutout: { value: this.multisampled ? 0.02 : 0.5 },
+            },
+        });
+        return species.material;
+    }
+
+    // Billboards of species `index` at `bases` (x, y, z per tree, cell-local).
+    makeMesh(index, bases) {
+        const count = bases.length / 3;
+        const mesh = new THREE.InstancedMesh(this.quad, this.material(index), count);
+        const m = mesh.instanceMatrix.array;
+        for (let i = 0; i < count; ++i) {
+            m[16 * i] = m[16 * i + 5] = m[16 * i + 10] = m[16 * i + 15] = 1;
+            m.set(bases.subarray(3 * i, 3 * i + 3), 16 * i + 12);
+        }
+        mesh.instanceMatrix.needsUpdate = true;
+        mesh.frustumCulled = false; // the cell's bounds decide visibility
+        mesh.raycast = () => {}; // a click on a far tree selects the ground's cell
+        return mesh;
+    }
+
+    get status() {
+        if (!this.enabled) return 'off';
+        const failed = this.failed.length ? `, ${this.failed.length} failed` : '';
+        return `${this.byKey.size} species${failed}`;
+    }
+}

@@ -1,0 +1,144 @@
+// Tree billboards end to end (part of ctest web.browser): `hexlod serve` on a park of its own
+// (40 trees of the shipped species, a few houses) in chromium. From 150 m the same view is drawn
+// with every tree as terminals, as billboards of its species' impostor, and without trees; the
+// billboards must cover about the pixels the terminals cover and bring the image much closer to
+// the terminals' than no trees at all; by distance (the default) those far trees must be
+// billboards; and after the trees are edited, their batches must fall back to terminals, since
+// no served species matches their new values. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import test from 'node:test';
+import { fileURLToPath } from 'node:url';
+
+import { launchChromium, startServer } from './harness.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const binary = process.env.HEXLOD_BINARY;
+const configs = process.env.HEXLOD_CONFIGS_DIR ?? path.resolve(here, '..', '..', 'configs');
+const artifacts = process.env.HEXLOD_WEB_ARTIFACTS ?? path.join(os.tmpdir(), 'hexlod-web-artifacts');
+const width = 800, height = 450;
+
+function writeScene(folder) {
+    const scene = {
+        name: 'tree-test', seed: 3, cell_size: 60,
+        grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
+        buildings: [{ source: 'procedural', count: 4, block_size: 60, street_width: 12, park_share: 0.5,
+            districts: [{ grammar: 'residential', share: 1, floors: [2, 3], lot: [16, 18] }] }],
+        trees: { count: 40, species: path.join(configs, 'species.json') },
+        lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
+    };
+    const file = path.join(folder, 'scene.json');
+    fs.writeFileSync(file, JSON.stringify(scene, null, 1));
+    return file;
+}
+
+// Per image pair, decoded in the page: the pixels each of two images changes against a third
+// (more than 24 of 255 in a channel), the overlap of those masks, and PSNR between images.
+async function compare(page, shots) {
+    return page.evaluate(async (shots) => {
+        const decode = async (base64) => {
+            const bitmap = await createImageBitmap(await (await fetch(`data:image/png;base64,${base64}`)).blob());
+            const context = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d');
+            context.drawImage(bitmap, 0, 0);
+            return context.getImageData(0, 0, bitmap.width, bitmap.height).data;
+        };
+        const [none, terminals, billboards] = await Promise.all([shots.none, shots.terminals, shots.billboards].map(decode));
+        const moved = (a, b, i) => Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2])) > 24;
+        const psnr = (a, b) => {
+            let se = 0;
+            for (let i = 0; i < a.length; i += 4) for (let k = 0; k < 3; ++k) se += (a[i + k] - b[i + k]) ** 2;
+            return 10 * Math.log10((255 * 255) / (se / ((3 * a.length) / 4)));
+        };
+        let t = 0, b = 0, both = 0, either = 0;
+        for (let i = 0; i < none.length; i += 4) {
+            const mt = moved(terminals, none, i), mb = moved(billboards, none, i);
+            t += mt;
+            b += mb;
+            both += mt && mb;
+            either += mt || mb;
+        }
+        return { terminalPixels: t, billboardPixels: b, overlap: both / either, psnrBillboards: psnr(terminals, billboards), psnrNone: psnr(terminals, none) };
+    }, shots);
+}
+
+test('far trees are billboards that stand for their trees, and edited trees fall back to terminals', { timeout: 240000 }, async () => {
+    assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
+    fs.mkdirSync(artifacts, { recursive: true });
+    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-trees-'));
+    const server = startServer(binary, writeScene(folder), [
+        '--impostor-store', path.join(folder, 'impostors'), '--impostor-grid', '6', '--impostor-res', '16',
+    ]);
+    let browser;
+    try {
+        const base = await server.url;
+        browser = await launchChromium({ width, height });
+        const page = browser.page;
+        const pageErrors = [];
+        page.on('pageerror', (e) => pageErrors.push(e.message));
+        // South of the park at eye height, 150 m from its nearest cell and farther; by distance,
+        // trees are billboards from 195 m at this viewport.
+        const near = '0,-300,4,90,0', far = '0,-400,4,90,0';
+        const view = async (trees, camera = near) => {
+            await page.goto(`${base}?camera=${camera}&trees=${trees}`);
+            await page.waitForFunction(() => window.hexlod?.idle(), null, { timeout: 90000 });
+            await page.evaluate(() => document.querySelectorAll('#stats, #tuning, #help, #messages').forEach((e) => (e.style.visibility = 'hidden')));
+            await page.waitForTimeout(500);
+            const image = await page.screenshot({ path: path.join(artifacts, `trees-${trees}.png`), timeout: 60000 });
+            return { image: image.toString('base64'), state: await page.evaluate(() => window.hexlod.state()) };
+        };
+        const none = await view('none');
+        const terminals = await view('terminals');
+        const billboards = await view('billboards');
+        const scene = await (await fetch(`${base}api/v1/scene`)).json();
+        assert.equal(scene.capabilities.tree_billboards, true);
+        assert.equal(billboards.state.streamer.billboards, 40, 'every tree is a billboard');
+        assert.equal(terminals.state.streamer.billboards, 0);
+        assert.match(billboards.state.trees, /^\d+ species$/);
+
+        const c = await compare(page, { none: none.image, terminals: terminals.image, billboards: billboards.image });
+        const coverage = c.billboardPixels / c.terminalPixels;
+        assert.ok(c.terminalPixels > 300, `the trees cover ${c.terminalPixels} pixels`);
+        assert.ok(coverage > 0.7 && coverage < 1.4, `billboards cover ${coverage.toFixed(2)} of the terminals' pixels`);
+        // Each tree grows from its own seed; the species' impostor shows one tree of them.
+        assert.ok(c.overlap > 0.45, `the two tree masks overlap by ${c.overlap.toFixed(2)}`);
+        assert.ok(c.psnrBillboards > c.psnrNone + 3, `PSNR against the terminals: billboards ${c.psnrBillboards.toFixed(2)} dB, no trees ${c.psnrNone.toFixed(2)} dB`);
+
+        // By distance, trees beyond the terminal distance are billboards.
+        const auto = await view('auto', far);
+        assert.equal(auto.state.streamer.billboards, 40);
+        assert.equal(auto.state.streamer.terminals[4], 0, 'no tree terminal this far out (the houses are LOD3 and LOD2)');
+
+        // Edit the trees' grammar (trees are edited by cell or grammar): no served species has
+        // the new values, so every tree batch turns to terminals, at any distance.
+        const edited = await page.evaluate(async () => {
+            const h = window.hexlod;
+            const grammar = h.scene.grammars.find((g) => g.kind === 'tree');
+            await h.tuning.post({ grammar: grammar.index }, { trunk_h: 4.25 });
+            return { grammar: grammar.index };
+        });
+        await page.waitForFunction(() => window.hexlod.state().streamer.treesAsTerminals === 40 && window.hexlod.idle(), null, { timeout: 90000 });
+        const after = await page.evaluate((e) => {
+            const h = window.hexlod;
+            const drawn = h.streamer.cells.flatMap((c) => c.batches.filter((b) => b.grammar === e.grammar).map((b) => b.drawn));
+            return { drawn, state: h.state() };
+        }, edited);
+        for (const d of after.drawn) {
+            assert.equal(d.kind, 'terminal');
+            assert.equal(d.version, 2);
+        }
+        assert.equal(after.state.streamer.billboards, 0);
+        await page.screenshot({ path: path.join(artifacts, 'trees-edited.png'), timeout: 60000 });
+        assert.deepEqual(pageErrors, []);
+        console.log(
+            `web.browser trees: billboards cover ${coverage.toFixed(2)} of the terminals' ${c.terminalPixels} pixels (overlap ${c.overlap.toFixed(2)}), ` +
+                `PSNR against terminals ${c.psnrBillboards.toFixed(2)} dB (no trees: ${c.psnrNone.toFixed(2)} dB); ` +
+                `first view ${terminals.state.loadTime?.toFixed(2)} s with terminals, ${billboards.state.loadTime?.toFixed(2)} s with billboards`,
+        );
+    } finally {
+        await browser?.close();
+        server.stop();
+        fs.rmSync(folder, { recursive: true, force: true });
+    }
+});
