@@ -132,7 +132,6 @@ bool bakeSceneImpostors(const scene::BuiltScene& scene, const render::TerminalMe
     for (uint32_t g = uint32_t(buildingGrammars); g < grammarCount; ++g) {
         const scene::GrammarBuildings& trees = grammarAt(g);
         report.skippedUnused += uint32_t(trees.grammar.shapes.size());
-        if (!options.treeSpecies) continue;
         std::map<std::vector<float>, size_t> seen;
         for (const grammar::BuildingInput& tree : trees.buildings) {
             if (!seen.emplace(tree.parameters, seen.size()).second) continue;

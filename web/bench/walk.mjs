@@ -59,7 +59,7 @@ try {
     const after = await state();
     console.log(JSON.stringify({
         scene, viewport: size, query,
-        opening: { ...load, fps: openingFps, cells: opening.streamer.cells, terminals, cache_mib: opening.cache.bytes / 1048576 },
+        opening: { ...load, fps: openingFps, cells: opening.streamer.cells, terminals, trees: opening.streamer.trees, cache_mib: opening.cache.bytes / 1048576 },
         walk: {
             seconds: walkSeconds, metres: Math.hypot(after.position[0] - before.position[0], after.position[1] - before.position[1]),
             fps: walkFps, bytes: after.traffic.bytes - before.traffic.bytes, requests: after.traffic.requests - before.traffic.requests,

@@ -2,9 +2,10 @@
 // (40 trees of the shipped species, a few houses) in chromium. From 150 m the same view is drawn
 // with every tree as terminals, as billboards of its species' impostor, and without trees; the
 // billboards must cover about the pixels the terminals cover and bring the image much closer to
-// the terminals' than no trees at all; by distance (the default) those far trees must be
-// billboards; and after the trees are edited, their batches must fall back to terminals, since
-// no served species matches their new values. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
+// the terminals' than no trees at all; by distance (the default) the cut must split the park's
+// batches from nearer and make every tree a billboard from farther; and after the trees are
+// edited, their batches must fall back to terminals, since no served species matches their new
+// values. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -93,8 +94,8 @@ test('far trees are billboards that stand for their trees, and edited trees fall
         const billboards = await view('billboards');
         const scene = await (await fetch(`${base}api/v1/scene`)).json();
         assert.equal(scene.capabilities.tree_billboards, true);
-        assert.equal(billboards.state.streamer.billboards, 40, 'every tree is a billboard');
-        assert.equal(terminals.state.streamer.billboards, 0);
+        assert.equal(billboards.state.streamer.trees.billboards, 40, 'every tree is a billboard');
+        assert.equal(terminals.state.streamer.trees.billboards, 0);
         assert.match(billboards.state.trees, /^\d+ species$/);
 
         const c = await compare(page, { none: none.image, terminals: terminals.image, billboards: billboards.image });
@@ -105,9 +106,15 @@ test('far trees are billboards that stand for their trees, and edited trees fall
         assert.ok(c.overlap > 0.45, `the two tree masks overlap by ${c.overlap.toFixed(2)}`);
         assert.ok(c.psnrBillboards > c.psnrNone + 3, `PSNR against the terminals: billboards ${c.psnrBillboards.toFixed(2)} dB, no trees ${c.psnrNone.toFixed(2)} dB`);
 
+        // Nearer, the cut runs through the park: its near trees are terminals, its far ones
+        // billboards, in the same batches.
+        const mixed = (await view('auto', '0,-200,4,90,0')).state.streamer.trees;
+        assert.ok(mixed.billboards > 0 && mixed.terminals > 0, `trees ${JSON.stringify(mixed)}`);
+        assert.equal(mixed.billboards + mixed.terminals, 40);
+
         // By distance, trees beyond the terminal distance are billboards.
         const auto = await view('auto', far);
-        assert.equal(auto.state.streamer.billboards, 40);
+        assert.equal(auto.state.streamer.trees.billboards, 40);
         assert.equal(auto.state.streamer.terminals[4], 0, 'no tree terminal this far out (the houses are LOD3 and LOD2)');
 
         // Edit the trees' grammar (trees are edited by cell or grammar): no served species has
@@ -118,7 +125,7 @@ test('far trees are billboards that stand for their trees, and edited trees fall
             await h.tuning.post({ grammar: grammar.index }, { trunk_h: 4.25 });
             return { grammar: grammar.index };
         });
-        await page.waitForFunction(() => window.hexlod.state().streamer.treesAsTerminals === 40 && window.hexlod.idle(), null, { timeout: 90000 });
+        await page.waitForFunction(() => window.hexlod.state().streamer.trees.edited === 40 && window.hexlod.idle(), null, { timeout: 90000 });
         const after = await page.evaluate((e) => {
             const h = window.hexlod;
             const drawn = h.streamer.cells.flatMap((c) => c.batches.filter((b) => b.grammar === e.grammar).map((b) => b.drawn));
@@ -128,7 +135,7 @@ test('far trees are billboards that stand for their trees, and edited trees fall
             assert.equal(d.kind, 'terminal');
             assert.equal(d.version, 2);
         }
-        assert.equal(after.state.streamer.billboards, 0);
+        assert.equal(after.state.streamer.trees.billboards, 0);
         await page.screenshot({ path: path.join(artifacts, 'trees-edited.png'), timeout: 60000 });
         assert.deepEqual(pageErrors, []);
         console.log(

@@ -5,7 +5,8 @@
 // get a hair of depth so the matrix stays invertible for normals). With impostors, terminals
 // are re-sorted into the three lists by lod_policy.classifyTerminal whenever the camera has
 // moved enough for the decision to change (a CPU stand-in for the native renderer's GPU pass);
-// without them every terminal is LOD4 and the lists never change.
+// without them every terminal is LOD4 and the lists never change, unless a tree batch's cut
+// moves trees between terminals and billboards.
 import * as THREE from 'three';
 
 import { halfToFloat, quaternionAxes, snorm16ToFloat } from '../payload/record.js';
@@ -14,8 +15,9 @@ import { classifyTerminal } from '../stream/lod_policy.js';
 const FLAT_DEPTH = 1e-3;
 
 export class TerminalBatch {
-    // `impostors`: an ImpostorSet (impostors.js) or null.
-    constructor(set, library, material, impostors) {
+    // `impostors`: an ImpostorSet (impostors.js) or null. `treeCut`: a tree batch, whose
+    // terminals of trees shown as billboards updateLod leaves out.
+    constructor(set, library, material, impostors, { treeCut = false } = {}) {
         this.set = set;
         this.group = new THREE.Group();
         this.group.name = `terminals ${set.cell.q},${set.cell.r}/${set.grammar}`;
@@ -56,9 +58,11 @@ export class TerminalBatch {
         }
         this.counts = { 4: n, 3: 0, 2: 0, culled: 0 };
         this.lastCamera = null;
-        this.sorted = this.runs.some((r) => r.lod3);
+        this.sorted = treeCut || this.runs.some((r) => r.lod3);
+        if (treeCut) for (const run of this.runs) run.records ??= new Uint32Array(run.count);
+        this.lastCut = -1;
         this.gpuBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
-        // Without impostors the lists never change: the instance buffers hold all there is.
+        // Without impostors or a tree cut the lists never change: the instance buffers hold all there is.
         if (!this.sorted) this.matrices = this.frames = this.sizes = null;
     }
 
@@ -84,20 +88,24 @@ export class TerminalBatch {
         return run;
     }
 
-    // `camera`: the camera position relative to this batch's cell origin (doubles).
-    updateLod(camera, distances) {
+    // `camera`: the camera position relative to this batch's cell origin (doubles); `cut`: the
+    // batch's TreeBillboards, whose billboard trees' terminals are left out, or null.
+    updateLod(camera, distances, cut = null) {
         if (!this.sorted) return;
-        if (this.lastCamera) {
+        const cutVersion = cut ? cut.version : -1;
+        if (this.lastCamera && cutVersion === this.lastCut) {
             const moved = Math.hypot(camera[0] - this.lastCamera[0], camera[1] - this.lastCamera[1], camera[2] - this.lastCamera[2]);
             if (moved < Math.max(0.5, 0.02 * distances.lod3)) return;
         }
         this.lastCamera = camera.slice();
+        this.lastCut = cutVersion;
         const counts = { 4: 0, 3: 0, 2: 0, culled: 0 };
         const corner = [0, 0, 0], axes = new Float64Array(9);
         for (const run of this.runs) {
             const lists = { 4: run.lod4, 3: run.lod3, 2: run.lod2 };
             const filled = { 4: 0, 3: 0, 2: 0 };
             for (let i = run.first; i < run.first + run.count; ++i) {
+                if (cut && cut.isBillboard(this.set.records[8 * i + 3])) continue;
                 const f = this.frames, k = 13 * i;
                 corner[0] = f[k] - camera[0];
                 corner[1] = f[k + 1] - camera[1];
@@ -115,6 +123,7 @@ export class TerminalBatch {
                 ++counts[lod];
             }
             for (const lod of [4, 3, 2]) {
+                if (!lists[lod]) continue; // a shape without impostor has no LOD3 and LOD2 lists
                 lists[lod].count = filled[lod];
                 lists[lod].instanceMatrix.needsUpdate = true;
             }

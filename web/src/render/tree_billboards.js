@@ -1,8 +1,11 @@
 // The billboards of one tree batch, from its extruded set: each tree stands at the centre of
 // its footprint on its base elevation (as lod/tree_pass.cpp places it) and is drawn with the
-// impostor of its species, found by its exact parameter values. A tree whose values match no
-// served species (it was edited since the service baked them) has no billboard: `unmatched`
-// counts them, and the streamer then draws the batch from its terminals instead.
+// impostor of its species, found by its exact parameter values. Per tree, as the native tree
+// cut: a tree nearer the camera than the terminal distance is drawn from the batch's terminals
+// (`isBillboard` false: TerminalBatch shows its terminals), a farther one as its billboard. A
+// tree whose values match no served species (it was edited since the service baked them) is
+// never a billboard: `unmatched` counts them, and the streamer then draws the batch's terminals
+// at any distance.
 import * as THREE from 'three';
 
 export class TreeBillboards {
@@ -11,31 +14,84 @@ export class TreeBillboards {
         this.group = new THREE.Group();
         this.group.name = `trees ${set.cell.q},${set.cell.r}/${set.grammar}`;
         const { buildings, footprints } = set;
+        const n = buildings.count;
         const values = new Float32Array(set.parametersPerBuilding);
-        const bySpecies = new Map(); // species index -> [x, y, z, ...]
+        this.bases = new Float32Array(3 * n);
+        this.speciesOfTree = new Int32Array(n);
         this.unmatched = 0;
-        for (let i = 0; i < buildings.count; ++i) {
+        const perSpecies = new Map(); // species index -> trees
+        for (let i = 0; i < n; ++i) {
             for (let j = 0; j < values.length; ++j) values[j] = set.parameters[j][i];
             const s = species.speciesOf(set.grammar, values);
-            if (s < 0) {
-                ++this.unmatched;
-                continue;
-            }
+            this.speciesOfTree[i] = s;
             let x = 0, y = 0;
-            const first = buildings.firstVertex[i], n = buildings.vertexCount[i];
-            for (let v = first; v < first + n; ++v) {
+            const first = buildings.firstVertex[i], count = buildings.vertexCount[i];
+            for (let v = first; v < first + count; ++v) {
                 x += footprints.x[v];
                 y += footprints.y[v];
             }
-            if (!bySpecies.has(s)) bySpecies.set(s, []);
-            bySpecies.get(s).push(x / Math.max(n, 1), y / Math.max(n, 1), buildings.baseElevation[i]);
+            this.bases.set([x / Math.max(count, 1), y / Math.max(count, 1), buildings.baseElevation[i]], 3 * i);
+            if (s < 0) ++this.unmatched;
+            else perSpecies.set(s, (perSpecies.get(s) ?? 0) + 1);
         }
-        this.count = buildings.count - this.unmatched;
-        for (const [s, bases] of bySpecies) this.group.add(species.makeMesh(s, Float32Array.from(bases)));
-        this.gpuBytes = 64 * this.count;
+        this.treeIds = buildings.id;
+        this.meshes = new Map(); // species index -> InstancedMesh, `count` the billboards drawn
+        for (const [s, capacity] of perSpecies) {
+            const mesh = species.makeMesh(s, capacity);
+            this.meshes.set(s, mesh);
+            this.group.add(mesh);
+        }
+        this.billboard = new Uint8Array(n); // per tree: drawn as a billboard now
+        this.billboardIds = new Set();
+        this.count = 0; // billboards drawn
+        this.version = 0; // grows whenever the cut changes
+        this.lastCamera = null;
+        this.lastDistance = -1;
+        this.gpuBytes = 64 * (n - this.unmatched);
+    }
+
+    isBillboard(treeId) {
+        return this.billboardIds.has(treeId);
+    }
+
+    // The cut for a camera at `camera` (cell-local): trees of a served species at least
+    // `distance` from it are billboards (distance 0: all of them). Recomputed when the camera
+    // has moved enough for a tree to cross, or the distance changed.
+    updateCut(camera, distance) {
+        if (this.lastCamera && distance === 0 && this.lastDistance === 0) return; // all, wherever the camera is
+        if (this.lastCamera && distance === this.lastDistance) {
+            const moved = Math.hypot(camera[0] - this.lastCamera[0], camera[1] - this.lastCamera[1], camera[2] - this.lastCamera[2]);
+            if (moved < Math.max(0.5, 0.02 * distance)) return;
+        }
+        this.lastCamera = camera.slice();
+        this.lastDistance = distance;
+        let changed = false;
+        const filled = new Map();
+        for (let i = 0; i < this.speciesOfTree.length; ++i) {
+            const s = this.speciesOfTree[i];
+            const b = this.bases;
+            const far = s >= 0 && Math.hypot(b[3 * i] - camera[0], b[3 * i + 1] - camera[1], b[3 * i + 2] - camera[2]) >= distance;
+            if (far !== !!this.billboard[i]) {
+                changed = true;
+                this.billboard[i] = far ? 1 : 0;
+                if (far) this.billboardIds.add(this.treeIds[i]);
+                else this.billboardIds.delete(this.treeIds[i]);
+            }
+            if (!far) continue;
+            const slot = filled.get(s) ?? 0;
+            this.meshes.get(s).instanceMatrix.array.set(b.subarray(3 * i, 3 * i + 3), 16 * slot + 12);
+            filled.set(s, slot + 1);
+        }
+        this.count = 0;
+        for (const [s, mesh] of this.meshes) {
+            mesh.count = filled.get(s) ?? 0;
+            mesh.instanceMatrix.needsUpdate = true;
+            this.count += mesh.count;
+        }
+        if (changed) ++this.version;
     }
 
     dispose() {
-        for (const mesh of this.group.children) mesh.dispose();
+        for (const mesh of this.meshes.values()) mesh.dispose();
     }
 }

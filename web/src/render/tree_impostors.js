@@ -149,16 +149,13 @@ export class TreeImpostors {
         return species.material;
     }
 
-    // Billboards of species `index` at `bases` (x, y, z per tree, cell-local).
-    makeMesh(index, bases) {
-        const count = bases.length / 3;
-        const mesh = new THREE.InstancedMesh(this.quad, this.material(index), count);
+    // Room for `capacity` billboards of species `index`: instance i is drawn at the translation
+    // of its matrix (a tree's base, cell-local), `count` of them.
+    makeMesh(index, capacity) {
+        const mesh = new THREE.InstancedMesh(this.quad, this.material(index), capacity);
         const m = mesh.instanceMatrix.array;
-        for (let i = 0; i < count; ++i) {
-            m[16 * i] = m[16 * i + 5] = m[16 * i + 10] = m[16 * i + 15] = 1;
-            m.set(bases.subarray(3 * i, 3 * i + 3), 16 * i + 12);
-        }
-        mesh.instanceMatrix.needsUpdate = true;
+        for (let i = 0; i < capacity; ++i) m[16 * i] = m[16 * i + 5] = m[16 * i + 10] = m[16 * i + 15] = 1;
+        mesh.count = 0;
         mesh.frustumCulled = false; // the cell's bounds decide visibility
         mesh.raycast = () => {}; // a click on a far tree selects the ground's cell
         return mesh;

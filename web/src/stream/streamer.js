@@ -41,7 +41,7 @@ export class Streamer {
             onFailed: (request, error) => onError(`${request.url}: ${error.message ?? error}`),
             onStale: () => onStale(),
         });
-        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, decodeMs: 0 };
+        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 }, decodeMs: 0 };
         this.frustum = new THREE.Frustum();
         this.box = new THREE.Box3();
     }
@@ -106,7 +106,8 @@ export class Streamer {
         }
         if (!value.terminals) {
             const library = this.libraries[value.set.grammar];
-            value.terminals = new TerminalBatch(value.set, library, this.materials.terminal, this.impostors.enabled ? this.impostors : null);
+            const treeCut = this.trees.enabled && this.grammar(value.set.grammar)?.kind === 'tree';
+            value.terminals = new TerminalBatch(value.set, library, this.materials.terminal, this.impostors.enabled ? this.impostors : null, { treeCut });
             this.cache.grow(url, value.terminals.gpuBytes);
         }
         return value.terminals.group;
@@ -122,7 +123,7 @@ export class Streamer {
         const treeDistance = lodDistance(this.profile.geometric_error[2], this.profile, view.fovY, view.viewportHeight);
         const requests = [];
         const pinned = new Set();
-        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, billboards: 0, treesAsTerminals: 0 };
+        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 } };
         const p = view.position;
         for (const cell of this.cells) {
             const decision = decideCell(this.lodOf.get(cell.id), cell.bounds, view, this.profile);
@@ -194,20 +195,23 @@ export class Streamer {
         frame.requests.push({ url, kind, grammar: b.grammar, priority: base + frame.sse });
     }
 
-    showTerminals(b, term, frame) {
+    // `cut`: a tree batch's TreeBillboards, whose billboard trees' terminals are not drawn.
+    showTerminals(b, term, frame, cut = null) {
         const value = this.cache.get(term);
         const { cell, p } = frame;
         frame.objects.push(this.object(term, value, 'terminals'));
-        value.terminals.updateLod([p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]], frame.distances);
+        value.terminals.updateLod([p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]], frame.distances, cut);
         if (frame.visible) for (const lod of [4, 3, 2]) frame.stats.terminals[lod] += value.terminals.counts[lod];
         frame.pinned.add(term);
         b.drawn = { url: term, version: value.version, kind: 'terminal' };
     }
 
-    // A tree batch: its terminals within LOD2's distance, else billboards from its extruded set
-    // (the trees' positions and parameters) while the service serves species impostors; a batch
-    // with trees of no served species (edited ones) stays terminals at every distance. Until
-    // the wanted form arrives the batch keeps the other one, so trees never blink out.
+    // A tree batch. While the service serves species impostors, each tree beyond LOD2's
+    // distance is a billboard (its position and parameters from the batch's extruded set) and
+    // each nearer one is drawn from the batch's terminals, which a batch fetches only while its
+    // cell is within that distance; a tree of no served species (edited) is terminals at any
+    // distance. Without species impostors only near batches draw, from their terminals. Until
+    // the terminals arrive every tree of a near batch is a billboard, so none blinks out.
     updateTrees(b, decision, treeDistance, frame) {
         if (this.treeForm === 'none') {
             b.shown = { extruded: null, terminal: null };
@@ -217,28 +221,36 @@ export class Streamer {
         const near =
             this.treeForm === 'terminals' || (this.treeForm !== 'billboards' && decision.lod === TERMINALS && decision.distance < treeDistance);
         let boards = null;
-        if (this.trees.enabled) {
+        if (this.trees.enabled && this.treeForm !== 'terminals') {
             this.request(b, 'extruded', frame);
             const ext = this.pick(b.extruded_set, b.shown.extruded);
-            if (ext && this.trees.isReady) boards = { url: ext, value: this.cache.get(ext) };
-            if (boards) boards.object = this.object(ext, boards.value, 'billboards');
+            if (ext && this.trees.isReady) {
+                const value = this.cache.get(ext);
+                boards = { url: ext, value, group: this.object(ext, value, 'billboards'), trees: value.billboards };
+            }
         }
-        const complete = boards && boards.value.billboards.unmatched === 0;
-        const wantTerminals = near || (boards && !complete);
+        const wantTerminals = near || (boards && boards.trees.unmatched > 0);
         if (wantTerminals) this.request(b, 'terminal', frame);
         const term = wantTerminals ? this.pickTerminals(b) : null;
         b.shown = { extruded: boards?.url ?? null, terminal: term };
-        if (boards) frame.pinned.add(boards.url);
-        if (term) {
-            this.showTerminals(b, term, frame);
-            if (frame.visible && !near) frame.stats.treesAsTerminals += boards.value.billboards.unmatched;
-        } else if (boards) {
-            frame.objects.push(boards.object);
-            if (frame.visible) frame.stats.billboards += boards.value.billboards.count;
-            b.drawn = { url: boards.url, version: boards.value.version, kind: 'billboards' };
-        } else {
-            b.drawn = null;
+        const { cell, p, stats, visible } = frame;
+        const local = [p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]];
+        // Near, with its terminals in, the cut is by distance; else every tree that can be is a
+        // billboard (far, only the edited trees' terminals are drawn).
+        if (boards) boards.trees.updateCut(local, term && near ? treeDistance : 0);
+        if (term) this.showTerminals(b, term, frame, boards?.trees ?? null);
+        if (boards) {
+            frame.pinned.add(boards.url);
+            frame.objects.push(boards.group);
+            if (!term) b.drawn = { url: boards.url, version: boards.value.version, kind: 'billboards' };
         }
+        if (!term && !boards) b.drawn = null;
+        if (!visible) return;
+        const members = boards?.trees.speciesOfTree.length ?? b.members;
+        const billboards = boards?.trees.count ?? 0;
+        stats.trees.billboards += billboards;
+        if (term) stats.trees.terminals += members - billboards;
+        if (term && !near) stats.trees.edited += boards.trees.unmatched;
     }
 
     // The batch versions drawn now that differ from 1 (edited), and those of `cell` if given.

@@ -26,7 +26,7 @@ export class StatsPanel {
             `camera ${s.position.map((v) => v.toFixed(1)).join(', ')}`,
             `cells in view ${s.streamer.visible}: LOD0 (extruded) ${s.streamer.cells.extruded}, terminal sets ${s.streamer.cells.terminals}`,
             `terminals drawn: LOD4 ${s.streamer.terminals[4]}, LOD3 ${s.streamer.terminals[3]}, LOD2 ${s.streamer.terminals[2]}`,
-            `tree billboards ${s.streamer.billboards}${s.streamer.treesAsTerminals ? `, ${s.streamer.treesAsTerminals} edited trees far away as terminals` : ''}`,
+            `trees: ${s.streamer.trees.billboards} billboards, ${s.streamer.trees.terminals} from terminals${s.streamer.trees.edited ? ` (${s.streamer.trees.edited} edited ones far away)` : ''}`,
             `downloaded ${(s.traffic.bytes / MiB).toFixed(2)} MiB in ${s.traffic.requests} requests (${s.traffic.errors} errors)`,
             `cache ${s.cache.entries} payloads, ${(s.cache.bytes / MiB).toFixed(1)} of ${(s.cache.budget / MiB).toFixed(0)} MiB, ${s.cache.evictions} evicted`,
             `requests pending ${s.pending}, in flight ${s.inFlight}, aborted ${s.aborted}`,

@@ -21,7 +21,6 @@ struct SceneImpostorOptions {
     impostor::ViewLayout facadeLayout; // hemisphere, for terminal shapes
     impostor::ViewLayout treeLayout{impostor::ViewSphere::FullSphere, 8, 128, 2}; // full sphere, for species
     std::string storeDirectory; // empty: bake everything, store nothing
-    bool treeSpecies = true;    // false: facade shapes only, for a client that draws trees itself
     // Called after each shape with (done, total, name), for a progress bar.
     std::function<void(size_t, size_t, const std::string&)> progress;
 };
