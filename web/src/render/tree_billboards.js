@@ -41,8 +41,7 @@ export class TreeBillboards {
             this.meshes.set(s, mesh);
             this.group.add(mesh);
         }
-        this.billboard = new Uint8Array(n); // per tree: drawn as a billboard now
-        this.billboardIds = new Set();
+        this.billboardIds = new Set(); // the trees drawn as billboards now
         this.count = 0; // billboards drawn
         this.version = 0; // grows whenever the cut changes
         this.lastCamera = null;
@@ -71,11 +70,11 @@ export class TreeBillboards {
             const s = this.speciesOfTree[i];
             const b = this.bases;
             const far = s >= 0 && Math.hypot(b[3 * i] - camera[0], b[3 * i + 1] - camera[1], b[3 * i + 2] - camera[2]) >= distance;
-            if (far !== !!this.billboard[i]) {
+            const id = this.treeIds[i];
+            if (far !== this.billboardIds.has(id)) {
                 changed = true;
-                this.billboard[i] = far ? 1 : 0;
-                if (far) this.billboardIds.add(this.treeIds[i]);
-                else this.billboardIds.delete(this.treeIds[i]);
+                if (far) this.billboardIds.add(id);
+                else this.billboardIds.delete(id);
             }
             if (!far) continue;
             const slot = filled.get(s) ?? 0;
