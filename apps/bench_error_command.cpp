@@ -51,6 +51,12 @@ render::Image sideBySide(const std::vector<const render::Image*>& images, uint32
     return sheet;
 }
 
+std::vector<double> frameMs(const std::vector<lod::FrameStats>& frames) {
+    std::vector<double> ms;
+    for (const lod::FrameStats& f : frames) ms.push_back(f.frameMs);
+    return ms;
+}
+
 } // namespace
 
 void registerBenchErrorCommand(CLI::App& bench, BenchErrorOptions& o, CLI::App*& command) {
@@ -194,11 +200,7 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
         results.push_back(std::move(result));
     }
 
-    const double referenceMs = median([&] {
-        std::vector<double> v;
-        for (const auto& f : results.front().frames) v.push_back(f.frameMs);
-        return v;
-    }());
+    const double referenceMs = median(frameMs(results.front().frames));
     nlohmann::json entries = nlohmann::json::array();
     std::ostringstream csv;
     csv << "setting,mode,max_sse,median_frame_ms,frame_time_ratio_to_reference,mean_psnr_db,min_psnr_db,mean_"
@@ -226,6 +228,9 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
             {"median_triangles", summary["median_triangles"]},
             {"terminals_per_lod", summary["terminals_per_lod"]},
             {"peak_resident_bytes", summary["peak_resident_bytes"]},
+            {"median_stage_ms", summary["median_stage_ms"]},
+            {"total_generation_ms", summary["total_generation_ms"]},
+            {"frame_ms_per_frame", frameMs(r.frames)},
             {"psnr_db_per_frame", r.psnr},
             {"ssim_per_frame", r.ssim}};
         entries.push_back(entry);
