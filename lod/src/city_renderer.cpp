@@ -133,8 +133,7 @@ bool CityRenderer::init(std::string& error) {
     // Trees: geometry near the camera, billboards beyond; the reference draws every tree as
     // geometry and the forced coarse modes every tree as a billboard.
     const bool speciesImpostors = impostors_ && !impostors_->species.empty();
-    treeError_ =
-        options_.treeGeometricError < 0.0 ? options_.lod.geometricError[3] : options_.treeGeometricError;
+    treeError_ = options_.lod.treeGeometricError;
     if (!speciesImpostors || options_.mode == RenderMode::AllLod4) treeError_ = 0.0;
     scheduling.treeGeometricError = options_.mode == RenderMode::Lod ? treeError_ : 0.0;
     if (options_.mode == RenderMode::AllLod4 || options_.mode == RenderMode::AllLod3 ||

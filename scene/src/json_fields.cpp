@@ -62,6 +62,7 @@ LodProfile readLodProfile(const Json& value, const std::string& path, LodProfile
             }
         }
     }
+    lod.treeGeometricError = fields.number("tree_geometric_error", lod.treeGeometricError, 0.0, 1e6);
     fields.finish();
     return lod;
 }

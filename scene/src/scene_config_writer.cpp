@@ -86,7 +86,8 @@ Json sceneConfigToJson(const SceneConfig& config, const std::string& baseDir) {
     }
     out["lod"] = {{"max_screen_space_error", config.lod.maxScreenSpaceError},
                   {"hysteresis", config.lod.hysteresis},
-                  {"geometric_error", config.lod.geometricError}};
+                  {"geometric_error", config.lod.geometricError},
+                  {"tree_geometric_error", config.lod.treeGeometricError}};
     constexpr uint64_t kMiB = uint64_t(1) << 20;
     Json cache = {{"memory_mb", config.cache.memoryBytes / kMiB}, {"disk_mb", config.cache.diskBytes / kMiB}};
     if (!config.cache.diskPath.empty()) cache["disk_path"] = relativeTo(config.cache.diskPath, base);

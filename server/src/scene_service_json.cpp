@@ -167,11 +167,14 @@ Json SceneService::staticSummary() const {
          {{"max_screen_space_error", lod.maxScreenSpaceError},
           {"hysteresis", lod.hysteresis},
           {"geometric_error", lod.geometricError},
+          {"tree_geometric_error", lod.treeGeometricError},
           {"policy",
            "per cell: sse = geometric_error[1] * viewport_height / (distance * 2 * tan(fov_y / 2)), "
            "distance from the camera to the cell's bounds box; a cell switches to terminal sets above "
            "max_screen_space_error * (1 + hysteresis) and back to its extruded set below "
-           "max_screen_space_error * (1 - hysteresis)"}}},
+           "max_screen_space_error * (1 - hysteresis); per tree, the same formula with "
+           "tree_geometric_error and the distance to the tree: terminals above "
+           "max_screen_space_error, its species' billboard at or below it"}}},
         {"attributions", scene.attributions},
         {"impostor_layout", assets_.impostorLayout},
         {"tree_species", speciesJson()},

@@ -28,5 +28,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     check(allFinite(lod.maxScreenSpaceError, lod.hysteresis) && lod.maxScreenSpaceError > 0.0);
     check(lod.hysteresis >= 0.0 && lod.hysteresis <= 0.95);
     for (const double e : lod.geometricError) check(allFinite(e) && e >= 0.0);
+    check(allFinite(lod.treeGeometricError) && lod.treeGeometricError >= 0.0);
     return 0;
 }

@@ -1,8 +1,8 @@
 // The whole frame on llvmpipe: every mode renders a small city, the LOD system costs less than
 // everything at LOD4 and stays close to it, multisampling antialiases, tree billboards cover
-// what their trees cover with and without it, hidden billboards and LOD3 impostors are
-// dropped without changing a pixel, a city 1e7 m out renders as at the origin, odd cameras
-// render without error, and golden images hold each mode's look.
+// what their trees cover with and without it, the profile's tree error places the cut, hidden
+// billboards and LOD3 impostors are dropped without changing a pixel, a city 1e7 m out renders
+// as at the origin, odd cameras render without error, and golden images hold each mode's look.
 #include "../render/gl_fixture.h"
 #include "test_city.h"
 
@@ -42,8 +42,9 @@ protected:
 
     Rendered render(testing::TestCity& city, const SceneImpostors& impostors, RenderMode mode,
                     const scene::CameraPose& pose, uint32_t frames = 1, uint32_t samples = 1,
-                    bool dropHidden = true) {
+                    bool dropHidden = true, const scene::LodProfile& lod = {}) {
         CityRendererOptions options;
+        options.lod = lod;
         options.dropHidden = dropHidden;
         options.width = kWidth;
         options.height = kHeight;
@@ -162,6 +163,30 @@ TEST_F(CityRendererTest, MultisampledTreeBillboardsCoverWhatTheirTreesCover) {
         std::printf("%u samples: billboards against tree geometry %.2f dB\n", samples, psnr[pass]);
     }
     EXPECT_GT(psnr[1], psnr[0] - 2.0) << "multisampled billboards cover more than their trees";
+}
+
+TEST_F(CityRendererTest, TheProfilesTreeErrorPlacesTheCutBetweenTreesAndBillboards) {
+    // Trees only, so every LOD4 terminal is a tree's. A billboard is accepted where the tree
+    // error stays under the budget: a small error makes every tree a billboard, a huge one
+    // none, one in between keeps the near trees geometry; 0 turns billboards off.
+    testing::TestCity city = testing::makeCity(0, 120);
+    const SceneImpostors impostors = bake(city);
+    const scene::CameraPose pose = lookAt({-60, -70, 12}, {0, 0, 5});
+    const double errors[4] = {0.0, 0.05, 2.0, 1e3};
+    uint64_t treeTerminals[4] = {0, 0, 0, 0};
+    for (size_t i = 0; i < 4; ++i) {
+        scene::LodProfile lod;
+        lod.treeGeometricError = errors[i];
+        treeTerminals[i] =
+            render(city, impostors, RenderMode::Lod, pose, 1, 1, true, lod).stats.terminalsPerLod[4];
+        std::printf("tree error %g m: %llu tree terminals drawn\n", errors[i],
+                    static_cast<unsigned long long>(treeTerminals[i]));
+    }
+    EXPECT_GT(treeTerminals[0], 0u);
+    EXPECT_EQ(treeTerminals[3], treeTerminals[0]);
+    EXPECT_EQ(treeTerminals[1], 0u);
+    EXPECT_GT(treeTerminals[2], 0u);
+    EXPECT_LT(treeTerminals[2], treeTerminals[0]);
 }
 
 TEST_F(CityRendererTest, HiddenImpostorsAndBillboardsAreDroppedWithoutChangingAPixel) {

@@ -75,7 +75,8 @@ TEST(SceneConfig, EveryFieldIsRead) {
       "overrides": [ { "source": 1, "buildings": [3, 4], "params": { "floors": 9 } } ],
       "trees": { "count": 5, "species": [ { "name": "x", "grammar": "t.grammar", "params": { "leaf_size": 0.3 } } ] },
       "shapes": { "door": { "gltf": "door.glb" } },
-      "lod": { "max_screen_space_error": 4, "hysteresis": 0.3, "geometric_error": [20, 5, 1, 0.5, 0] },
+      "lod": { "max_screen_space_error": 4, "hysteresis": 0.3, "geometric_error": [20, 5, 1, 0.5, 0],
+               "tree_geometric_error": 1.5 },
       "cache": { "memory_mb": 64, "disk_mb": 128, "disk_path": "cache" }
     })";
     SceneConfig c;
@@ -100,6 +101,7 @@ TEST(SceneConfig, EveryFieldIsRead) {
     EXPECT_EQ(c.trees.species[0].grammar, "/base/t.grammar");
     EXPECT_EQ(c.shapes[0].gltf, "/base/door.glb");
     EXPECT_DOUBLE_EQ(c.lod.geometricError[0], 20.0);
+    EXPECT_DOUBLE_EQ(c.lod.treeGeometricError, 1.5);
     EXPECT_EQ(c.cache.memoryBytes, uint64_t(64) << 20);
     EXPECT_EQ(c.cache.diskPath, "/base/cache");
 }
@@ -157,6 +159,15 @@ TEST(SceneConfig, BadConfigsNameTheField) {
          "s.json: lod.geometric_error: errors must not grow from LOD0 to LOD4"},
         {"LodCount", variant("\"buildings\": [", "\"lod\": {\"geometric_error\": [1]}, \"buildings\": ["),
          "s.json: lod.geometric_error: expected 5 numbers, LOD0 to LOD4"},
+        {"TreeErrorNegative",
+         variant("\"buildings\": [", "\"lod\": {\"tree_geometric_error\": -0.5}, \"buildings\": ["),
+         "s.json: lod.tree_geometric_error: must be a finite number in [0, 1e+06], got -0.5"},
+        {"TreeErrorHuge",
+         variant("\"buildings\": [", "\"lod\": {\"tree_geometric_error\": 1e300}, \"buildings\": ["),
+         "s.json: lod.tree_geometric_error: must be a finite number in [0, 1e+06], got 1e+300"},
+        {"TreeErrorNotNumber",
+         variant("\"buildings\": [", "\"lod\": {\"tree_geometric_error\": \"far\"}, \"buildings\": ["),
+         "s.json: lod.tree_geometric_error: "},
         {"CacheZero", variant("\"buildings\": [", "\"cache\": {\"memory_mb\": 0}, \"buildings\": ["),
          "s.json: cache.memory_mb: must be at least 1"},
         {"ParamNotNumber",

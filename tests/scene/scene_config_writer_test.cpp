@@ -59,6 +59,7 @@ void expectSameConfig(const SceneConfig& a, const SceneConfig& b) {
     EXPECT_EQ(a.lod.maxScreenSpaceError, b.lod.maxScreenSpaceError);
     EXPECT_EQ(a.lod.hysteresis, b.lod.hysteresis);
     EXPECT_EQ(a.lod.geometricError, b.lod.geometricError);
+    EXPECT_EQ(a.lod.treeGeometricError, b.lod.treeGeometricError);
     EXPECT_EQ(a.cache.memoryBytes, b.cache.memoryBytes);
     EXPECT_EQ(a.cache.diskBytes, b.cache.diskBytes);
 }

@@ -90,6 +90,7 @@ TEST_F(Endpoints, SceneSummaryDescribesGrammarsLodNotesAndCapabilities) {
     EXPECT_EQ(s["grammars"].back()["kind"], "tree");
     EXPECT_EQ(s["lod"]["max_screen_space_error"], 2.0);
     EXPECT_EQ(s["lod"]["geometric_error"].size(), 5u);
+    EXPECT_EQ(s["lod"]["tree_geometric_error"], scene::LodProfile().treeGeometricError);
     EXPECT_EQ(s["capabilities"]["terminal_sets"], true);
     EXPECT_EQ(s["capabilities"]["impostors"], false);
     EXPECT_EQ(s["capabilities"]["edit_auth"], "none");

@@ -28,7 +28,7 @@ function writeScene(folder) {
         buildings: [{ source: 'procedural', count: 4, block_size: 60, street_width: 12, park_share: 0.5,
             districts: [{ grammar: 'residential', share: 1, floors: [2, 3], lot: [16, 18] }] }],
         trees: { count: 40, species: path.join(configs, 'species.json') },
-        lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
+        lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0], tree_geometric_error: 1 },
     };
     const file = path.join(folder, 'scene.json');
     fs.writeFileSync(file, JSON.stringify(scene, null, 1));

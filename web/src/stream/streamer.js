@@ -118,9 +118,12 @@ export class Streamer {
         camera.updateMatrixWorld();
         this.frustum.setFromProjectionMatrix(new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse));
         const distances = terminalLodDistances(this.profile, view);
-        // Trees are terminals only near the camera: beyond LOD2's distance they are billboards of
-        // their species' impostor (updateTrees), as in the native renderer.
-        const treeDistance = lodDistance(this.profile.geometric_error[2], this.profile, view.fovY, view.viewportHeight);
+        // Trees are terminals only near the camera: beyond the distance at which the profile's
+        // tree error stays under the budget they are billboards of their species' impostor
+        // (updateTrees), as in the native renderer.
+        // A tree error of 0 turns billboards off, as in the native renderer.
+        const treeError = this.profile.tree_geometric_error;
+        const treeDistance = treeError > 0 ? lodDistance(treeError, this.profile, view.fovY, view.viewportHeight) : Infinity;
         const requests = [];
         const pinned = new Set();
         const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 } };
@@ -206,8 +209,8 @@ export class Streamer {
         b.drawn = { url: term, version: value.version, kind: 'terminal' };
     }
 
-    // A tree batch. While the service serves species impostors, each tree beyond LOD2's
-    // distance is a billboard (its position and parameters from the batch's extruded set) and
+    // A tree batch. While the service serves species impostors, each tree beyond the tree cut's
+    // distance (the profile's tree_geometric_error) is a billboard (its position and parameters from the batch's extruded set) and
     // each nearer one is drawn from the batch's terminals, which a batch fetches only while its
     // cell is within that distance; a tree of no served species (edited) is terminals at any
     // distance. Without species impostors only near batches draw, from their terminals. Until

@@ -52,9 +52,6 @@ struct CityRendererOptions {
     uint64_t volumeBudgetBytes = uint64_t(256) << 20; // base volume meshes
     double transitionBand = 0.15;                     // share of each LOD's range that blends into the next
     uint32_t parallaxIterations = 2;                  // LOD3
-    // Trees are geometry while their billboard's error would show: this error in metres, or
-    // (negative) the profile's LOD3 error.
-    double treeGeometricError = -1.0;
     uint32_t schedulerWorkers = 0;   // 0: batches are generated in the frame that needs them (deterministic)
     uint32_t maxBatchesPerFrame = 0; // 0: no cap
     // Ends every draw pass with glFinish and times it (FrameStats::passMs): where a frame's

@@ -59,6 +59,9 @@ struct LodProfile {
     double maxScreenSpaceError = 2.0; // pixels
     double hysteresis = 0.2;          // relative band around the terminal/extruded switch
     std::array<double, 5> geometricError{16.0, 4.0, 1.0, 0.25, 0.0}; // LOD0..LOD4, metres
+    // A tree's billboard (one impostor per species, not per tree) against its own geometry:
+    // trees are geometry while this error would show, billboards beyond.
+    double treeGeometricError = 0.25;
 };
 
 struct CacheBudget {
