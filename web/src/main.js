@@ -149,6 +149,11 @@ async function start() {
             if (selection) outlineSelection();
         }
         world.render(view);
+        const post = edits.lastPost;
+        if (post && post.shownAt === null) {
+            const drawn = streamer.drawsVersions(post.changed);
+            if (drawn !== false) Object.assign(post, { shownAt: now, inView: drawn === true });
+        }
         stats.frame(now);
         if (loadTime === null && streamer.queue.pending === 0 && streamer.cache.size > 0) loadTime = (now - startedAt) / 1000;
         if (now - lastStats > 250) {
@@ -172,6 +177,7 @@ async function start() {
             impostors: capabilities.impostors ? impostors.status : 'off (not served: capabilities.impostors is false)',
             trees: capabilities.tree_billboards ? trees.status : 'off (not served: capabilities.tree_billboards is false)',
             loadTime,
+            lastEdit: edits.lastPost ?? null,
             versions: streamer.versions(selection?.cell && streamer.cells.find((c) => c.q === selection.cell[0] && c.r === selection.cell[1])),
             events: eventStatus,
             fps: stats.fps,

@@ -153,6 +153,12 @@ test('the viewer loads, moves, selects a building, tunes it and shows the edit',
         const version = `(${target.cell[0]},${target.cell[1]})/${target.grammar} v2`;
         await page.waitForFunction((v) => document.getElementById('stats').textContent.includes(v), version, { timeout: 30000 });
         const editSeconds = (Date.now() - edited) / 1000;
+        // The viewer's own timing of it: the POST's reply, then the first frame with the edited
+        // batch at its new version.
+        const timing = await page.evaluate(() => window.hexlod.state().lastEdit);
+        assert.ok(timing && timing.inView, `the edited batch was drawn: ${JSON.stringify(timing)}`);
+        assert.ok(timing.postedAt <= timing.repliedAt && timing.repliedAt <= timing.shownAt, JSON.stringify(timing));
+        await page.waitForFunction(() => /last edit \d+: reply in [\d.]+ s, on screen [\d.]+ s after its POST/.test(document.getElementById('stats').textContent), null, { timeout: 10000 });
         await page.waitForFunction(() => window.hexlod.idle(), null, { timeout: 60000 });
         await page.waitForTimeout(700);
         const after = await shot('04-edited.png');
@@ -180,7 +186,8 @@ test('the viewer loads, moves, selects a building, tunes it and shows the edit',
         assert.deepEqual(pageErrors, []);
         console.log(
             `web.browser: first view ${loadSeconds.toFixed(2)} s (viewer: ${final.loadTime?.toFixed(2)} s), ` +
-                `edit to new version on screen ${editSeconds.toFixed(2)} s, ${(100 * share).toFixed(1)} % of the region changed, ` +
+                `edit to new version on screen ${editSeconds.toFixed(2)} s (viewer: reply ${((timing.repliedAt - timing.postedAt) / 1000).toFixed(2)} s, ` +
+                `drawn ${((timing.shownAt - timing.postedAt) / 1000).toFixed(2)} s after the POST), ${(100 * share).toFixed(1)} % of the region changed, ` +
                 `${final.fps.toFixed(1)} fps, ${(final.traffic.bytes / 1024).toFixed(0)} KiB in ${final.traffic.requests} requests; ` +
                 `artifacts in ${artifacts}`,
         );

@@ -39,14 +39,20 @@ export class EditClient {
     async edit(selector, params, comment) {
         const body = { selector, params };
         if (comment) body.comment = comment;
-        const reply = await postJson('/api/v1/edits', body);
-        this.indexSeq = Math.max(this.indexSeq, reply.seq);
-        this.onChanged(reply.changed, reply);
-        return reply;
+        return this.post('/api/v1/edits', body);
     }
 
     async undo() {
-        const reply = await postJson('/api/v1/edits/undo', {});
+        return this.post('/api/v1/edits/undo', {});
+    }
+
+    // `lastPost` times this client's own latest edit or undo: when it was posted and when its
+    // reply came; the viewer adds when its changed batches were first drawn (shownAt), which
+    // is what a user tuning a parameter waits for.
+    async post(url, body) {
+        const postedAt = performance.now();
+        const reply = await postJson(url, body);
+        this.lastPost = { seq: reply.seq, postedAt, repliedAt: performance.now(), changed: reply.changed, shownAt: null };
         this.indexSeq = Math.max(this.indexSeq, reply.seq);
         this.onChanged(reply.changed, reply);
         return reply;

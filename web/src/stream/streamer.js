@@ -56,6 +56,20 @@ export class Streamer {
     }
 
     // The `changed` list of an edit reply or event: new keys, versions and URLs per batch.
+    // Whether every batch of `changed` that this viewer draws is drawn at its new version or a
+    // later one; null when it draws none of them (all out of view).
+    drawsVersions(changed) {
+        let drawn = 0;
+        for (const c of changed) {
+            const cell = this.cells.find((x) => x.q === c.cell[0] && x.r === c.cell[1]);
+            const batch = cell?.batches.find((b) => b.grammar === c.grammar);
+            if (!batch?.drawn) continue;
+            if (batch.drawn.version < c.version) return false;
+            ++drawn;
+        }
+        return drawn > 0 ? true : null;
+    }
+
     applyChanged(changed) {
         for (const c of changed) {
             const cell = this.cells.find((x) => x.q === c.cell[0] && x.r === c.cell[1]);

@@ -1,8 +1,18 @@
 // The stats overlay: frame rate, cells per LOD, terminals drawn per LOD, tree billboards, bytes
 // downloaded, the content cache, pending requests, where meshes, impostors and tree impostors
-// come from (or why not), and the versions of the batches drawn (edited ones, and the selected
-// cell's).
+// come from (or why not), how long the latest edit took to show, and the versions of the
+// batches drawn (edited ones, and the selected cell's).
 const MiB = 1024 * 1024;
+
+// How long the user's latest edit took, the POST's reply and then its changed batches on
+// screen: appended to the versions line, so the panel does not grow over the view.
+function lastEdit(post) {
+    if (!post) return '';
+    const reply = ((post.repliedAt - post.postedAt) / 1000).toFixed(2);
+    if (post.shownAt === null) return `   last edit ${post.seq}: reply in ${reply} s, waiting for its content`;
+    if (!post.inView) return `   last edit ${post.seq}: reply in ${reply} s, none of its batches in view`;
+    return `   last edit ${post.seq}: reply in ${reply} s, on screen ${((post.shownAt - post.postedAt) / 1000).toFixed(2)} s after its POST`;
+}
 
 export class StatsPanel {
     constructor(element) {
@@ -32,7 +42,7 @@ export class StatsPanel {
             `requests pending ${s.pending}, in flight ${s.inFlight}, aborted ${s.aborted}`,
             `meshes ${s.meshes}   impostors ${s.impostors}   trees ${s.trees}`,
             s.loadTime !== null ? `first view complete in ${s.loadTime.toFixed(2)} s` : 'loading the first view...',
-            `versions: ${s.versions.length ? s.versions.map((v) => `(${v.cell})/${v.grammar} v${v.version}`).join(' ') : 'all v1'}`,
+            `versions: ${s.versions.length ? s.versions.map((v) => `(${v.cell})/${v.grammar} v${v.version}`).join(' ') : 'all v1'}${lastEdit(s.lastEdit)}`,
         ];
         this.element.textContent = lines.join('\n');
     }
