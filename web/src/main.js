@@ -97,7 +97,10 @@ async function start() {
         return reloading;
     }
     const edits = new EditClient({
-        onChanged: (changed) => streamer.applyChanged(changed),
+        onChanged: (changed) => {
+            streamer.applyChanged(changed);
+            stream(performance.now()); // ask for the new content now, not at the next frame
+        },
         onReset: () => reloadIndex(),
         onStatus: (s) => (eventStatus = s),
     });
@@ -137,17 +140,31 @@ async function start() {
 
     const startedAt = performance.now();
     let loadTime = null, last = performance.now(), lastStats = 0, lastStream = 0;
+    function stream(now, view = controls.view(canvas.clientHeight)) {
+        world.place(view);
+        streamer.update(view, world.camera);
+        lastStream = now;
+        if (selection) outlineSelection();
+    }
+    // While this viewer's edit waits for its reply, and then for its new content, the viewer
+    // starts no frame, for at most half a second each: on a slow renderer a frame holds the
+    // main thread for hundreds of milliseconds, and the reply and the payloads, which the
+    // service sends within milliseconds, would wait behind several frames.
+    function awaitingEdit(now) {
+        if (edits.postingSince !== null) return now - edits.postingSince < 500;
+        const post = edits.lastPost;
+        return post !== null && post.shownAt === null && streamer.queue.inFlight > 0 && now - post.repliedAt < 500;
+    }
     function frame(now) {
+        if (awaitingEdit(now)) {
+            requestAnimationFrame(frame);
+            return;
+        }
         const dt = Math.min((now - last) / 1000, 0.1);
         last = now;
         controls.update(dt);
         const view = controls.view(canvas.clientHeight);
-        if (now - lastStream > 50) {
-            world.place(view);
-            streamer.update(view, world.camera);
-            lastStream = now;
-            if (selection) outlineSelection();
-        }
+        if (now - lastStream > 50) stream(now, view);
         world.render(view);
         const post = edits.lastPost;
         if (post && post.shownAt === null) {

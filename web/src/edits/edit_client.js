@@ -13,6 +13,8 @@ export class EditClient {
         this.onStatus = onStatus;
         this.indexSeq = 0;
         this.lastEvent = null;
+        this.postingSince = null; // when the edit or undo in flight was posted; null: none
+        this.lastPost = null;
     }
 
     connect() {
@@ -51,7 +53,13 @@ export class EditClient {
     // is what a user tuning a parameter waits for.
     async post(url, body) {
         const postedAt = performance.now();
-        const reply = await postJson(url, body);
+        this.postingSince = postedAt;
+        let reply;
+        try {
+            reply = await postJson(url, body);
+        } finally {
+            this.postingSince = null;
+        }
         this.lastPost = { seq: reply.seq, postedAt, repliedAt: performance.now(), changed: reply.changed, shownAt: null };
         this.indexSeq = Math.max(this.indexSeq, reply.seq);
         this.onChanged(reply.changed, reply);
