@@ -174,7 +174,8 @@ Json SceneService::staticSummary() const {
            "max_screen_space_error * (1 + hysteresis) and back to its extruded set below "
            "max_screen_space_error * (1 - hysteresis); per tree, the same formula with "
            "tree_geometric_error and the distance to the tree: terminals above "
-           "max_screen_space_error, its species' billboard at or below it"}}},
+           "max_screen_space_error, its species' billboard at or below it (0: terminals in terminal-set "
+           "cells at any distance)"}}},
         {"attributions", scene.attributions},
         {"impostor_layout", assets_.impostorLayout},
         {"tree_species", speciesJson()},

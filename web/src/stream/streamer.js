@@ -55,7 +55,6 @@ export class Streamer {
         this.seq = index.seq;
     }
 
-    // The `changed` list of an edit reply or event: new keys, versions and URLs per batch.
     // Whether every batch of `changed` that this viewer draws is drawn at its new version or a
     // later one; null when it draws none of them (all out of view).
     drawsVersions(changed) {
@@ -70,6 +69,7 @@ export class Streamer {
         return drawn > 0 ? true : null;
     }
 
+    // The `changed` list of an edit reply or event: new keys, versions and URLs per batch.
     applyChanged(changed) {
         for (const c of changed) {
             const cell = this.cells.find((x) => x.q === c.cell[0] && x.r === c.cell[1]);
@@ -134,8 +134,8 @@ export class Streamer {
         const distances = terminalLodDistances(this.profile, view);
         // Trees are terminals only near the camera: beyond the distance at which the profile's
         // tree error stays under the budget they are billboards of their species' impostor
-        // (updateTrees), as in the native renderer.
-        // A tree error of 0 turns billboards off, as in the native renderer.
+        // (updateTrees). As in the native renderer, a tree error of 0 keeps every tree of a
+        // terminal-set cell geometry (extruded cells still draw theirs as billboards).
         const treeError = this.profile.tree_geometric_error;
         const treeDistance = treeError > 0 ? lodDistance(treeError, this.profile, view.fovY, view.viewportHeight) : Infinity;
         const requests = [];
@@ -224,8 +224,9 @@ export class Streamer {
     }
 
     // A tree batch. While the service serves species impostors, each tree beyond the tree cut's
-    // distance (the profile's tree_geometric_error) is a billboard (its position and parameters from the batch's extruded set) and
-    // each nearer one is drawn from the batch's terminals, which a batch fetches only while its
+    // distance (from the profile's tree_geometric_error; Infinity when it is 0)
+    // is a billboard (its position and parameters from the batch's extruded set) and each
+    // nearer one is drawn from the batch's terminals, which a batch fetches only while its
     // cell is within that distance; a tree of no served species (edited) is terminals at any
     // distance. Without species impostors only near batches draw, from their terminals. Until
     // the terminals arrive every tree of a near batch is a billboard, so none blinks out.
