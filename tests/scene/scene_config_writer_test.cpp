@@ -72,6 +72,7 @@ TEST(SceneConfigWriter, ShippedConfigsSurviveWriteThenLoad) {
         std::string error;
         ASSERT_TRUE(loadSceneConfig(std::string(HEXLOD_CONFIGS_DIR) + "/" + name, original, error)) << error;
         original.overrides.push_back({0, {3, 4}, {{"floors", 5.0}, {"floor_h", 3.25}}});
+        original.lod.treeGeometricError = 1.5; // not the default, so a writer that drops it fails
         const std::string path = folder + "/nested/out-" + name;
         fs::create_directories(fs::path(path).parent_path());
         ASSERT_TRUE(writeSceneConfig(original, path, error)) << error;

@@ -153,7 +153,7 @@ async function start() {
     function awaitingEdit(now) {
         if (edits.postingSince !== null) return now - edits.postingSince < 500;
         const post = edits.lastPost;
-        return post !== null && post.shownAt === null && streamer.queue.inFlight > 0 && now - post.repliedAt < 500;
+        return post !== null && post.shownAt === null && now - post.repliedAt < 500 && streamer.fetchesAnyOf(post.changed);
     }
     function frame(now) {
         if (awaitingEdit(now)) {

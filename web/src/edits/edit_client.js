@@ -13,7 +13,8 @@ export class EditClient {
         this.onStatus = onStatus;
         this.indexSeq = 0;
         this.lastEvent = null;
-        this.postingSince = null; // when the edit or undo in flight was posted; null: none
+        this.posting = 0; // edits and undos in flight
+        this.postingSince = null; // when the latest of them was posted; null: none in flight
         this.lastPost = null;
     }
 
@@ -54,13 +55,16 @@ export class EditClient {
     async post(url, body) {
         const postedAt = performance.now();
         this.postingSince = postedAt;
+        ++this.posting;
         let reply;
         try {
             reply = await postJson(url, body);
         } finally {
-            this.postingSince = null;
+            if (--this.posting === 0) this.postingSince = null;
         }
-        this.lastPost = { seq: reply.seq, postedAt, repliedAt: performance.now(), changed: reply.changed, shownAt: null };
+        // Replies to overlapping posts may come in any order: the latest edit is the one timed.
+        if (!this.lastPost || reply.seq > this.lastPost.seq)
+            this.lastPost = { seq: reply.seq, postedAt, repliedAt: performance.now(), changed: reply.changed ?? [], shownAt: null };
         this.indexSeq = Math.max(this.indexSeq, reply.seq);
         this.onChanged(reply.changed, reply);
         return reply;

@@ -55,18 +55,24 @@ export class Streamer {
         this.seq = index.seq;
     }
 
-    // Whether every batch of `changed` that this viewer draws is drawn at its new version or a
-    // later one; null when it draws none of them (all out of view).
+    // Whether every batch of `changed` that this viewer draws in view is drawn at its new
+    // version or a later one; null when none of them is in view. (A cell out of view keeps the
+    // `drawn` of its last frame in view.)
     drawsVersions(changed) {
         let drawn = 0;
         for (const c of changed) {
             const cell = this.cells.find((x) => x.q === c.cell[0] && x.r === c.cell[1]);
             const batch = cell?.batches.find((b) => b.grammar === c.grammar);
-            if (!batch?.drawn) continue;
+            if (!batch?.drawn || !this.world.cellGroup(cell).visible) continue;
             if (batch.drawn.version < c.version) return false;
             ++drawn;
         }
         return drawn > 0 ? true : null;
+    }
+
+    // Whether any payload that `changed` names is being fetched.
+    fetchesAnyOf(changed) {
+        return changed.some((c) => this.queue.running.has(c.terminal_set) || this.queue.running.has(c.extruded_set));
     }
 
     // The `changed` list of an edit reply or event: new keys, versions and URLs per batch.
