@@ -1,6 +1,7 @@
 // The viewer's LOD policy against the native one (cells/src/scheduler.cpp, lod/src/cull_inputs.cpp,
 // lod/include/hexlod/lod/cull_shared.h): the screen-space error formula, the hysteresis band, the
-// distance to a cell's bounds, the per-terminal LOD distances and the backface rule.
+// distance to a cell's bounds, the per-terminal LOD distances and the backface rule; and when a
+// moved camera re-decides them.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
@@ -10,6 +11,7 @@ import {
     distanceToBox,
     EXTRUDED,
     lodDistance,
+    movedEnough,
     nextCellLod,
     screenSpaceError,
     TERMINALS,
@@ -61,4 +63,12 @@ test('terminals: LOD3 and LOD2 distances from their geometric errors; backfaces 
     // Behind the wall: the camera at y > wall + depth sees its back.
     assert.equal(classifyTerminal(at(-0.5), axes, 2, 3, 0.3, { lod3, lod2 }, true), 0);
     assert.equal(classifyTerminal(at(-0.2), axes, 2, 3, 0.3, { lod3, lod2 }, true), 4);
+});
+
+test('a distance decision is re-made once the camera moves 2 % of the distance, at least 0.5 m', () => {
+    assert.equal(movedEnough(null, [0, 0, 0], 100), true);
+    assert.equal(movedEnough([0, 0, 0], [1.9, 0, 0], 100), false);
+    assert.equal(movedEnough([0, 0, 0], [0, 2, 0], 100), true);
+    assert.equal(movedEnough([0, 0, 0], [0, 0, 0.4], 1), false); // the half-metre floor
+    assert.equal(movedEnough([0, 0, 0], [0, 0, 0.5], 1), true);
 });

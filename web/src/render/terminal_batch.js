@@ -10,7 +10,7 @@
 import * as THREE from 'three';
 
 import { halfToFloat, quaternionAxes, snorm16ToFloat } from '../payload/record.js';
-import { classifyTerminal } from '../stream/lod_policy.js';
+import { classifyTerminal, movedEnough } from '../stream/lod_policy.js';
 
 const FLAT_DEPTH = 1e-3;
 
@@ -93,10 +93,7 @@ export class TerminalBatch {
     updateLod(camera, distances, cut = null) {
         if (!this.sorted) return;
         const cutVersion = cut ? cut.version : -1;
-        if (this.lastCamera && cutVersion === this.lastCut) {
-            const moved = Math.hypot(camera[0] - this.lastCamera[0], camera[1] - this.lastCamera[1], camera[2] - this.lastCamera[2]);
-            if (moved < Math.max(0.5, 0.02 * distances.lod3)) return;
-        }
+        if (cutVersion === this.lastCut && !movedEnough(this.lastCamera, camera, distances.lod3)) return;
         this.lastCamera = camera.slice();
         this.lastCut = cutVersion;
         const counts = { 4: 0, 3: 0, 2: 0, culled: 0 };

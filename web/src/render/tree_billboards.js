@@ -8,6 +8,8 @@
 // at any distance.
 import * as THREE from 'three';
 
+import { movedEnough } from '../stream/lod_policy.js';
+
 export class TreeBillboards {
     // `set`: a decoded extruded set of a tree grammar; `species`: a TreeImpostors.
     constructor(set, species) {
@@ -58,17 +60,14 @@ export class TreeBillboards {
     // has moved enough for a tree to cross, or the distance changed.
     updateCut(camera, distance) {
         if (this.lastCamera && distance === 0 && this.lastDistance === 0) return; // all, wherever the camera is
-        if (this.lastCamera && distance === this.lastDistance) {
-            const moved = Math.hypot(camera[0] - this.lastCamera[0], camera[1] - this.lastCamera[1], camera[2] - this.lastCamera[2]);
-            if (moved < Math.max(0.5, 0.02 * distance)) return;
-        }
+        if (distance === this.lastDistance && !movedEnough(this.lastCamera, camera, distance)) return;
         this.lastCamera = camera.slice();
         this.lastDistance = distance;
         let changed = false;
         const filled = new Map();
+        const b = this.bases;
         for (let i = 0; i < this.speciesOfTree.length; ++i) {
             const s = this.speciesOfTree[i];
-            const b = this.bases;
             const far = s >= 0 && Math.hypot(b[3 * i] - camera[0], b[3 * i + 1] - camera[1], b[3 * i + 2] - camera[2]) >= distance;
             const id = this.treeIds[i];
             if (far !== this.billboardIds.has(id)) {

@@ -55,6 +55,14 @@ export function terminalLodDistances(profile, camera) {
     };
 }
 
+// Whether a camera at `camera` has moved far enough from `last` (the position a distance
+// decision was last made at; null: never) for a decision made at `distance` metres to change:
+// by 2 % of it, and at least half a metre, so a hovering camera re-decides nothing.
+export function movedEnough(last, camera, distance) {
+    if (!last) return true;
+    return Math.hypot(camera[0] - last[0], camera[1] - last[1], camera[2] - last[2]) >= Math.max(0.5, 0.02 * distance);
+}
+
 // 0 (culled), 2, 3 or 4 for a terminal whose scope corner is at `corner` relative to the camera,
 // with scope axes X, Y, Z (from quaternionAxes: nine numbers), size (w, h) and depth d.
 export function classifyTerminal(corner, axes, w, h, d, distances, impostors) {

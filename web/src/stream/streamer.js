@@ -61,8 +61,7 @@ export class Streamer {
     drawsVersions(changed) {
         let drawn = 0;
         for (const c of changed) {
-            const cell = this.cells.find((x) => x.q === c.cell[0] && x.r === c.cell[1]);
-            const batch = cell?.batches.find((b) => b.grammar === c.grammar);
+            const { cell, batch } = this.batchOf(c);
             if (!batch?.drawn || !this.world.cellGroup(cell).visible) continue;
             if (batch.drawn.version < c.version) return false;
             ++drawn;
@@ -75,11 +74,16 @@ export class Streamer {
         return changed.some((c) => this.queue.running.has(c.terminal_set) || this.queue.running.has(c.extruded_set));
     }
 
+    // The cell and batch an entry of a `changed` list names (either undefined when unknown).
+    batchOf(change) {
+        const cell = this.cells.find((x) => x.q === change.cell[0] && x.r === change.cell[1]);
+        return { cell, batch: cell?.batches.find((b) => b.grammar === change.grammar) };
+    }
+
     // The `changed` list of an edit reply or event: new keys, versions and URLs per batch.
     applyChanged(changed) {
         for (const c of changed) {
-            const cell = this.cells.find((x) => x.q === c.cell[0] && x.r === c.cell[1]);
-            const batch = cell?.batches.find((b) => b.grammar === c.grammar);
+            const { batch } = this.batchOf(c);
             if (!batch || batch.version >= c.version) continue;
             Object.assign(batch, { key: c.key, version: c.version, terminal_set: c.terminal_set, extruded_set: c.extruded_set });
         }
@@ -166,7 +170,8 @@ export class Streamer {
             }
             const sse = Math.min(decision.sse, 1e6);
             const objects = [];
-            const frame = { cell, visible, sse, distances, p, stats, objects, pinned, requests };
+            const local = [p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]]; // the camera, cell-local
+            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests };
             for (const b of cell.batches) {
                 if (this.grammar(b.grammar)?.kind === 'tree') {
                     this.updateTrees(b, decision, treeDistance, frame);
@@ -221,9 +226,8 @@ export class Streamer {
     // `cut`: a tree batch's TreeBillboards, whose billboard trees' terminals are not drawn.
     showTerminals(b, term, frame, cut = null) {
         const value = this.cache.get(term);
-        const { cell, p } = frame;
         frame.objects.push(this.object(term, value, 'terminals'));
-        value.terminals.updateLod([p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]], frame.distances, cut);
+        value.terminals.updateLod(frame.local, frame.distances, cut);
         if (frame.visible) for (const lod of [4, 3, 2]) frame.stats.terminals[lod] += value.terminals.counts[lod];
         frame.pinned.add(term);
         b.drawn = { url: term, version: value.version, kind: 'terminal' };
@@ -257,8 +261,7 @@ export class Streamer {
         if (wantTerminals) this.request(b, 'terminal', frame);
         const term = wantTerminals ? this.pickTerminals(b) : null;
         b.shown = { extruded: boards?.url ?? null, terminal: term };
-        const { cell, p, stats, visible } = frame;
-        const local = [p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]];
+        const { local, stats, visible } = frame;
         // Near, with its terminals in, the cut is by distance; else every tree that can be is a
         // billboard (far, only the edited trees' terminals are drawn).
         if (boards) boards.trees.updateCut(local, term && near ? treeDistance : 0);
