@@ -3,6 +3,7 @@
 #include "hexlod/grammar/terminal_set_codec.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -13,6 +14,12 @@ namespace hexlod::cache {
 namespace fs = std::filesystem;
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 constexpr char kMagic[4] = {'H', 'X', 'C', '1'};
 constexpr const char* kExtension = ".hxc";
@@ -170,6 +177,7 @@ void DiskTier::evictOverBudgetLocked() {
 }
 
 std::optional<grammar::TerminalSet> DiskTier::load(const BatchKey& key) {
+    const auto start = Clock::now();
     const uint64_t digest = key.digest();
     uint64_t generation = 0;
     {
@@ -192,8 +200,9 @@ std::optional<grammar::TerminalSet> DiskTier::load(const BatchKey& key) {
         grammar::peekTerminalSet(std::span(*bytes).subspan(kDiskFileHeaderBytes), info, error) &&
         info.checksum == header.checksum &&
         grammar::decodeTerminalSet(std::span(*bytes).subspan(kDiskFileHeaderBytes), set, error);
-    if (valid) return set;
     std::lock_guard lock(mutex_);
+    stats_.loadSeconds += secondsSince(start);
+    if (valid) return set;
     const auto it = files_.find(digest);
     if (it != files_.end() && it->second.generation == generation) {
         eraseLocked(digest, bytes.has_value()); // a file that vanished is forgotten, not counted
@@ -203,6 +212,7 @@ std::optional<grammar::TerminalSet> DiskTier::load(const BatchKey& key) {
 }
 
 void DiskTier::store(const BatchKey& key, const grammar::TerminalSet& set) {
+    const auto start = Clock::now();
     const std::vector<uint8_t> payload = grammar::encodeTerminalSet(set, zstdLevel_);
     grammar::TerminalSetPayloadInfo info;
     std::string error;
@@ -226,6 +236,7 @@ void DiskTier::store(const BatchKey& key, const grammar::TerminalSet& set) {
     }
     std::error_code ec;
     std::lock_guard lock(mutex_);
+    stats_.storeSeconds += secondsSince(start);
     // The rename happens under the lock so that it is ordered with evictions' unlinks.
     if (written) fs::rename(temporary, target, ec);
     if (!written || ec) {

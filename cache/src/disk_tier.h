@@ -26,6 +26,8 @@ struct DiskTierStats {
     uint64_t evictions = 0;
     uint64_t corruptFilesDropped = 0;
     uint64_t writeFailures = 0;
+    double loadSeconds = 0.0;  // reading and decoding, hits and misses alike
+    double storeSeconds = 0.0; // encoding and writing
 };
 
 class DiskTier {

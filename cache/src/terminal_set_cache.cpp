@@ -1,6 +1,7 @@
 #include "hexlod/cache/terminal_set_cache.h"
 
 #include "disk_tier.h"
+#include "disk_writer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,8 +9,12 @@
 namespace hexlod::cache {
 
 TerminalSetCache::TerminalSetCache(CacheOptions options) : options_(std::move(options)) {
-    if (!options_.diskPath.empty())
+    if (!options_.diskPath.empty()) {
         disk_ = std::make_unique<DiskTier>(options_.diskPath, options_.diskBudgetBytes, options_.zstdLevel);
+        // Sets waiting for the writer are pinned in memory: a quarter of the budget keeps the
+        // memory tier near its bound while letting a burst of generations run ahead.
+        writer_ = std::make_unique<DiskWriter>(*disk_, options_.memoryBudgetBytes / 4);
+    }
 }
 
 TerminalSetCache::~TerminalSetCache() = default;
@@ -58,7 +63,7 @@ void TerminalSetCache::insert(const BatchKey& key, grammar::TerminalSet set) {
         std::lock_guard lock(mutex_);
         insertLocked(key, shared, shared.get());
     }
-    if (disk_) disk_->store(key, *shared);
+    if (writer_) writer_->enqueue(key, shared);
 }
 
 TerminalSetCache::SetPtr
@@ -112,14 +117,19 @@ TerminalSetCache::getOrGenerate(const BatchKey& key, const std::function<grammar
         generating_.erase(key);
     }
     promise.set_value(result);
-    // Waiters already have the set; only this thread pays for compression and the write.
-    if (generated && disk_) disk_->store(key, *result);
+    // Waiters already have the set; the writer's thread pays for compression and the write.
+    if (generated && writer_) writer_->enqueue(key, result);
     return result;
 }
 
 void TerminalSetCache::trim() {
     std::lock_guard lock(mutex_);
     trimLocked(nullptr);
+}
+
+void TerminalSetCache::flushDisk() {
+    if (writer_) writer_->flush();
+    trim(); // what the writes unpinned
 }
 
 void TerminalSetCache::insertLocked(const BatchKey& key, const SetPtr& set,
@@ -168,6 +178,8 @@ CacheStats TerminalSetCache::stats() const {
         s.diskFiles = disk.files;
         s.corruptFilesDropped = disk.corruptFilesDropped;
         s.diskWriteFailures = disk.writeFailures;
+        s.diskLoadSecondsTotal = disk.loadSeconds;
+        s.diskStoreSecondsTotal = disk.storeSeconds;
     }
     return s;
 }

@@ -275,6 +275,7 @@ TEST(DiskTier, PersistsAcrossCacheInstances) {
     {
         TerminalSetCache cache(diskOptions(folder, uint64_t(1) << 30));
         for (int i = 0; i < 3; ++i) cache.insert(keyOf(i), makeSet(500, i));
+        cache.flushDisk();
         EXPECT_EQ(cache.stats().diskFiles, 3u);
     }
     TerminalSetCache cache(diskOptions(folder, uint64_t(1) << 30));
@@ -306,12 +307,15 @@ TEST(DiskTier, EvictsTheLeastRecentlyUsedFileOverBudget) {
     {
         TerminalSetCache probe(diskOptions(folder, 0));
         probe.insert(keyOf(0), makeSet(2000, 0));
+        probe.flushDisk();
         fileBytes = fs::file_size(fileOf(folder, keyOf(0)));
     }
     TerminalSetCache cache(diskOptions(folder, 0, 2 * fileBytes + fileBytes / 2)); // memory holds nothing
     cache.insert(keyOf(1), makeSet(2000, 1));
+    cache.flushDisk();
     EXPECT_NE(cache.find(keyOf(0)), nullptr); // 1 is now the least recently used file
     cache.insert(keyOf(2), makeSet(2000, 2));
+    cache.flushDisk();
     EXPECT_FALSE(fs::exists(fileOf(folder, keyOf(1))));
     EXPECT_TRUE(fs::exists(fileOf(folder, keyOf(0))));
     EXPECT_TRUE(fs::exists(fileOf(folder, keyOf(2))));
@@ -333,6 +337,7 @@ void expectDamageIsRegenerated(Damage damage, const std::string& name) {
     TerminalSetCache cache(diskOptions(folder, 0));
     cache.insert(keyOf(0), makeSet(300, 0));
     cache.insert(keyOf(1), makeSet(300, 1));
+    cache.flushDisk();
     const fs::path file = fileOf(folder, keyOf(0));
     const uint64_t size = fs::file_size(file);
     BatchKey damagedKey = keyOf(0);
@@ -360,9 +365,9 @@ void expectDamageIsRegenerated(Damage damage, const std::string& name) {
     });
     EXPECT_EQ(generated, 1);
     EXPECT_EQ(tagOf(*set), uint32_t(damagedKey.cell.q));
-    EXPECT_TRUE(fs::exists(fileOf(folder, damagedKey)));
     set.reset();
-    cache.trim(); // unpinned now, so out of memory: the next find reads the disk
+    cache.flushDisk(); // written and unpinned, so out of memory: the next find reads the disk
+    EXPECT_TRUE(fs::exists(fileOf(folder, damagedKey)));
     EXPECT_NE(cache.find(damagedKey), nullptr); // the rewritten file reads back
     s = cache.stats();
     EXPECT_EQ(s.diskHits, 1u);
@@ -381,6 +386,38 @@ TEST(DiskTier, AnotherVersionIsDroppedAndRegenerated) {
 }
 TEST(DiskTier, AFileUnderAnotherKeysNameIsDroppedAndRegenerated) {
     expectDamageIsRegenerated(Damage::OtherKeysName, "rename");
+}
+
+// Sets go to disk on the writer's thread: a set waiting for it stays in memory (a find is a
+// memory hit), and whatever is still queued when the cache goes is written before it goes.
+TEST(DiskTier, QueuedWritesStayInMemoryAndAreFinishedOnDestruction) {
+    const fs::path folder = freshFolder("queued");
+    {
+        TerminalSetCache cache(diskOptions(folder, 0)); // memory keeps only what is pinned
+        const auto generate = [&](int i) {
+            int generated = 0;
+            cache.getOrGenerate(keyOf(i), [&] { return ++generated, makeSet(4000, uint32_t(i)); });
+            EXPECT_EQ(generated, 1);
+        };
+        for (int i = 0; i < 8; ++i) generate(i);
+        cache.flushDisk();
+        CacheStats s = cache.stats();
+        EXPECT_EQ(s.diskFiles, 8u);
+        EXPECT_EQ(s.memoryEntries, 0u);           // written, so unpinned and trimmed to the budget
+        for (int i = 8; i < 16; ++i) generate(i); // left queued for the destructor
+        s = cache.stats();
+        EXPECT_EQ(s.misses, 16u);
+        EXPECT_EQ(s.generations, 16u);
+    }
+    TerminalSetCache cache(diskOptions(folder, 0));
+    EXPECT_EQ(cache.stats().diskFiles, 16u);
+    for (int i = 0; i < 16; ++i) {
+        const auto set = cache.find(keyOf(i));
+        ASSERT_NE(set, nullptr);
+        EXPECT_EQ(tagOf(*set), uint32_t(i));
+    }
+    EXPECT_EQ(cache.stats().diskHits, 16u);
+    fs::remove_all(folder);
 }
 
 // At start the cache adopts good files and deletes its own broken ones and leftovers of

@@ -18,6 +18,7 @@
 namespace hexlod::cache {
 
 class DiskTier;
+class DiskWriter;
 
 struct CacheOptions {
     uint64_t memoryBudgetBytes = uint64_t(512) << 20;
@@ -48,7 +49,9 @@ struct CacheStats {
     uint64_t diskWriteFailures = 0;
     uint64_t generations = 0;
     double generationSecondsTotal = 0.0;
-    double generationSecondsMax = 0.0; // the slowest batch
+    double generationSecondsMax = 0.0;  // the slowest batch
+    double diskLoadSecondsTotal = 0.0;  // disk tier: reading and decoding
+    double diskStoreSecondsTotal = 0.0; // disk tier: encoding and writing
 };
 
 // Thread-safe. Sizes are TerminalSet::byteSize().
@@ -71,7 +74,7 @@ public:
 
     // Memory, then disk (a disk hit is promoted to memory); nullptr on a miss.
     SetPtr find(const BatchKey& key);
-    // Into memory and, with a disk tier, to disk (written before this returns).
+    // Into memory and, with a disk tier, queued for the disk (written on the writer's thread).
     void insert(const BatchKey& key, grammar::TerminalSet set);
     // find(), else `generate` once per key however many threads ask at the same time: the
     // others wait for it. If `generate` throws, every waiter gets the exception and nothing
@@ -79,6 +82,9 @@ public:
     SetPtr getOrGenerate(const BatchKey& key, const std::function<grammar::TerminalSet()>& generate);
     // Evicts entries unpinned since the last call, if the memory tier is over budget.
     void trim();
+    // Returns once every set queued for the disk tier so far is written, then trims: new sets
+    // go to disk on a thread of their own, and stay pinned in memory until then.
+    void flushDisk();
     CacheStats stats() const;
 
 private:
@@ -96,6 +102,7 @@ private:
 
     CacheOptions options_;
     std::unique_ptr<DiskTier> disk_;
+    std::unique_ptr<DiskWriter> writer_; // after disk_: destroyed first, writing what is queued
     mutable std::mutex mutex_;
     std::unordered_map<BatchKey, Entry, BatchKeyHash> entries_;
     std::list<BatchKey> lru_; // most recently used first
