@@ -1,7 +1,8 @@
 #version 450 core
 // One pass over every terminal of the resident batches in view (thesis §7.5.3, after niagara's
-// drawcull.comp): frustum and backface culling and the LOD4/LOD3/LOD2 choice, compacted into
-// per-shape draw lists through atomic counters. One workgroup reads one arena page of a batch.
+// drawcull.comp): frustum, backface and occlusion culling and the LOD4/LOD3/LOD2 choice,
+// compacted into per-shape draw lists through atomic counters. One workgroup reads one arena
+// page of a batch.
 #include "gpu_types.h"
 #include "cull_shared.h"
 
@@ -15,8 +16,20 @@ layout(std430, binding = 3) readonly buffer ShapeBuffer { uvec4 shapes[]; };
 layout(std430, binding = 4) buffer CounterBuffer { uvec4 counters[]; };
 layout(std430, binding = 5) writeonly buffer ListBuffer { GpuTerminal lists[]; };
 layout(std430, binding = 10) readonly buffer TreeBuffer { vec4 trees[]; }; // by tree id: position, species
+layout(std430, binding = 11) buffer OccludedBuffer { uint occludedTerminals; };
 
 uniform uint workgroupCount;
+uniform sampler2D occlusionTiles; // the farthest depth of each tile, when frame.occlusion.x > 0
+
+bool hiddenByTiles(vec4 sphere) {
+    uvec4 rect;
+    float nearest;
+    if (!occlusionRect(sphere.xyz, sphere.w, frame, HEXLOD_OCCLUSION_MAX_TILES, rect, nearest)) return false;
+    for (uint y = rect.y; y <= rect.w; ++y)
+        for (uint x = rect.x; x <= rect.z; ++x)
+            if (texelFetch(occlusionTiles, ivec2(x, y), 0).r <= nearest) return false;
+    return true;
+}
 
 void main() {
     uint workgroup = gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x;
@@ -30,8 +43,13 @@ void main() {
     if (info.w != 0u && treeIsBillboard(trees[t.building].xyz, frame)) return;
     precise vec3 corner = t.position + batch.origin;
     float transition;
-    uint lod = classifyTerminal(t, corner, frame, info.z != 0u, transition);
+    vec4 sphere;
+    uint lod = classifyTerminal(t, corner, frame, info.z != 0u, transition, sphere);
     if (lod == HEXLOD_CULLED) return;
+    if (hiddenByTiles(sphere)) {
+        atomicAdd(occludedTerminals, 1u);
+        return;
+    }
     // Draw lists carry the camera-relative corner, the global shape id and, in place of the
     // building id, the transition factor (-1 marks LOD2, which has none).
     t.position = corner;

@@ -226,8 +226,7 @@ bool CityRenderer::init(std::string& error) {
         for (size_t s = 0; s < meshes_.shapeCount(g); ++s) shapeTree_[shapes_.shapeBase(g) + s] = 1;
     shapes_.commit();
     if (!trees_.init(catalog_, impostors_, ground_.origin(), error)) return false;
-    if (impostors_ && !depthTiles_.init(options_.width, options_.height, options_.samples, error))
-        return false;
+    if (!depthTiles_.init(options_.width, options_.height, options_.samples, error)) return false;
 
     gl::glCreateBuffers(1, &frameBuffer_);
     gl::glNamedBufferStorage(frameBuffer_, sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -259,11 +258,14 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     camera.nearPlane = nearPlane;
     camera.farPlane = farPlane;
     const cache::CacheStats cacheBefore = cache_.stats();
-    const double generatedBefore = cacheBefore.generationSecondsTotal;
     auto stageStart = Clock::now();
     const cells::FrameDecision decision = scheduler_->update(camera, timeSeconds);
     stats.scheduleMs = millisecondsSince(stageStart);
-    stats.generationMs = (cache_.stats().generationSecondsTotal - generatedBefore) * 1000.0;
+    const cache::CacheStats cacheScheduled = cache_.stats();
+    stats.generationMs =
+        (cacheScheduled.generationSecondsTotal - cacheBefore.generationSecondsTotal) * 1000.0;
+    stats.diskLoadMs = (cacheScheduled.diskLoadSecondsTotal - cacheBefore.diskLoadSecondsTotal) * 1000.0;
+    stats.diskStoreMs = (cacheScheduled.diskStoreSecondsTotal - cacheBefore.diskStoreSecondsTotal) * 1000.0;
 
     // 2. Upload: ready terminal sets into the arena; base volumes for extruded cells, for the
     // shells under terminals, and for batches still being generated (so nothing vanishes).
@@ -298,10 +300,9 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
             ++stats.cellsPerLod[4];
             for (uint32_t b : cell.ready) {
                 std::shared_ptr<const grammar::TerminalSet> set = cache_.find(catalog_.key(b));
-                const std::vector<uint32_t>* pages =
-                    set ? arena_.acquire(catalog_.key(b).digest(), *set) : nullptr;
+                const ArenaBatch* resident = set ? arena_.acquire(catalog_.key(b).digest(), *set) : nullptr;
                 const bool building = catalog_.batch(b).grammar < buildingGrammars;
-                if (!pages) {
+                if (!resident) {
                     ++stats.batchesRejected;
                     if (building)
                         volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f});
@@ -310,8 +311,9 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                     continue;
                 }
                 if (!building) billboards.emplace_back(b, false);
-                inputs.batches.push_back({set.get(), pages, catalog_.cellOrigin(catalog_.batch(b).cell),
-                                          shapes_.shapeBase(catalog_.batch(b).grammar)});
+                inputs.batches.push_back({set.get(), &resident->pages,
+                                          catalog_.cellOrigin(catalog_.batch(b).cell),
+                                          shapes_.shapeBase(catalog_.batch(b).grammar), &resident->spheres});
                 pinned.push_back(std::move(set));
                 ++stats.batchesDrawn;
                 if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), false, 1.0f});
@@ -356,24 +358,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     }
     stats.uploadMs = millisecondsSince(stageStart);
 
-    // 3. The cull and LOD pass.
-    stageStart = Clock::now();
-    const cells::Frustum frustum(pose.position, pose.forward, pose.up, pose.fovY, aspect, nearPlane,
-                                 farPlane);
-    const bool impostors = impostorTextures_.layers() > 0 && options_.mode != RenderMode::AllLod4;
-    inputs.frame =
-        makeCullFrame(frustum, options_.lod, pose.fovY, options_.height, options_.transitionBand, impostors);
-    if (options_.mode == RenderMode::AllLod3)
-        inputs.frame.lodDistance = glm::vec4(0.0f, std::numeric_limits<float>::max(), 0.0f, 1.0f);
-    if (options_.mode == RenderMode::AllLod2) inputs.frame.lodDistance = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    const double treeCut = treeError_ > 0.0 && !trees_.empty() && trees_.hasImpostors()
-                               ? lodDistance(treeError_, options_.lod, pose.fovY, options_.height)
-                               : -1.0;
-    setTreeCut(inputs.frame, treeCut, trees_.origin(), pose.position);
-    cull_.run(inputs, arena_.buffer(), shapes_.meshes());
-    stats.cullMs = millisecondsSince(stageStart);
-
-    // 4. Draws.
+    // 3. The opaque base volumes and ground, which hide what stands behind them: drawn first,
+    // so that the cull pass can drop hidden terminals before any of their work is done.
     stageStart = Clock::now();
     const glm::dvec3 right = glm::normalize(glm::cross(pose.forward, pose.up));
     const glm::dvec3 up = glm::cross(right, pose.forward);
@@ -404,13 +390,45 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glCullFace(GL_BACK);
     PassTimer timer(options_.timePasses, stats.passMs);
     if (depthTiles_.valid()) depthTiles_.clearCounts();
-    // Opaque geometry first: base volumes and the ground then hide impostors behind them
-    // before their fragments are shaded.
-    drawTerminalMeshes(stats, timer);
     drawVolumes(volumes, pose.position, stats, timer);
     stats.triangles += ground_.draw(programs_->volume, pose.position);
     stats.draws += 2;
     timer.end(DrawPass::Ground);
+    stats.drawMs = millisecondsSince(stageStart);
+
+    // 4. The cull and LOD pass, against the depth of those occluders.
+    stageStart = Clock::now();
+    const cells::Frustum frustum(pose.position, pose.forward, pose.up, pose.fovY, aspect, nearPlane,
+                                 farPlane);
+    const bool impostors = impostorTextures_.layers() > 0 && options_.mode != RenderMode::AllLod4;
+    inputs.frame =
+        makeCullFrame(frustum, options_.lod, pose.fovY, options_.height, options_.transitionBand, impostors);
+    if (options_.mode == RenderMode::AllLod3)
+        inputs.frame.lodDistance = glm::vec4(0.0f, std::numeric_limits<float>::max(), 0.0f, 1.0f);
+    if (options_.mode == RenderMode::AllLod2) inputs.frame.lodDistance = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const double treeCut = treeError_ > 0.0 && !trees_.empty() && trees_.hasImpostors()
+                               ? lodDistance(treeError_, options_.lod, pose.fovY, options_.height)
+                               : -1.0;
+    setTreeCut(inputs.frame, treeCut, trees_.origin(), pose.position);
+    std::vector<float> occlusionTiles;
+    if (options_.dropHidden && (!inputs.batches.empty() || !billboards.empty())) {
+        depthTiles_.build(target_.depthTexture());
+        occlusionTiles = depthTiles_.read();
+        setOcclusion(inputs.frame, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
+                     options_.height, depthTiles_.columns(), depthTiles_.rows(), kDepthTileSize);
+        inputs.occlusionTexture = depthTiles_.texture();
+        inputs.occlusionTiles = &occlusionTiles;
+    }
+    cull_.run(inputs, arena_.buffer(), shapes_.meshes());
+    stats.cullTerminals = cull_.pageStats().terminals;
+    stats.cullSkippedTerminals = cull_.pageStats().skippedTerminals;
+    stats.cullOccludedTerminals = cull_.pageStats().occludedTerminals;
+    stats.cullMs = millisecondsSince(stageStart);
+
+    // 5. The rest of the draws.
+    stageStart = Clock::now();
+    timer.restart();
+    drawTerminalMeshes(stats, timer);
     drawImpostors(glm::mat4(glm::inverse(glm::dmat4(uniforms.viewProjection))), stats, timer);
     if (trees_.hasImpostors() && !billboards.empty()) {
         gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
@@ -420,7 +438,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         trees_.program().set("alphaToCoverage", uint32_t(options_.samples > 1));
         if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         for (const auto& [batch, all] : billboards) {
-            const uint32_t drawn = trees_.draw(batch, all);
+            const uint32_t drawn = trees_.draw(batch, all, inputs.frame, inputs.occlusionTiles);
             stats.treeBillboards += drawn;
             stats.triangles += 2ull * drawn;
             stats.draws += drawn > 0;
@@ -429,7 +447,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         gl::glBindVertexArray(0);
     }
     timer.end(DrawPass::Trees);
-    stats.drawMs = millisecondsSince(stageStart);
+    stats.drawMs += millisecondsSince(stageStart);
 
     stageStart = Clock::now();
     gl::glFinish();
@@ -476,6 +494,7 @@ void CityRenderer::drawTerminalMeshes(FrameStats& stats, PassTimer& timer) {
     const uint32_t shapes = cull_.shapeCount();
     if (shapes == 0) return;
     const std::vector<glm::uvec4> counters = cull_.readCounters();
+    stats.cullOccludedTerminals += cull_.readOccluded();
     for (uint32_t s = 0; s < shapes; ++s) {
         stats.terminalsPerLod[4] += counters[s].x;
         stats.terminalsPerLod[3] += counters[s].z;

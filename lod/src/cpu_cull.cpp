@@ -23,10 +23,16 @@ CullResult cullOnCpu(const CullInputs& inputs) {
             }
             const glm::vec3 corner = t.position + origin;
             float transition = 0.0f;
-            const uint32_t lod = shared::classifyTerminal(t, corner, inputs.frame,
-                                                          inputs.shapeImpostor[shape] != 0, transition);
+            glm::vec4 sphere;
+            const uint32_t lod = shared::classifyTerminal(
+                t, corner, inputs.frame, inputs.shapeImpostor[shape] != 0, transition, sphere);
             if (lod == HEXLOD_CULLED) {
                 ++result.culled;
+                continue;
+            }
+            if (tilesHideSphere(inputs.frame, inputs.occlusionTiles, sphere, HEXLOD_OCCLUSION_MAX_TILES)) {
+                ++result.culled;
+                ++result.occluded;
                 continue;
             }
             t.position = corner;

@@ -1,9 +1,19 @@
-// Frame constants and draw-list layout for the cull pass.
+// Frame constants, the pages to cull and the draw-list layout for the cull pass.
 #include "hexlod/lod/cull_inputs.h"
+#include "hexlod/lod/page_bounds.h"
+#include "hexlod/lod/terminal_arena.h"
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
 #include <cmath>
 
 namespace hexlod::lod {
+namespace {
+
+constexpr uint32_t kPageMaxTiles = 256;
+
+} // namespace
 
 double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,
                    uint32_t viewportHeight) {
@@ -32,20 +42,80 @@ void setTreeCut(shared::CullFrame& frame, double billboardDistance, const glm::d
     frame.trees = glm::vec4(cut, glm::vec3(treeOrigin - camera));
 }
 
-DrawListLayout layoutDrawLists(const CullInputs& inputs) {
-    DrawListLayout layout;
+void setOcclusion(shared::CullFrame& frame, const glm::dvec3& forward, const glm::dvec3& up, double fovY,
+                  double nearPlane, double farPlane, uint32_t width, uint32_t height, uint32_t columns,
+                  uint32_t rows, uint32_t tilePixels) {
+    const glm::dvec3 f = glm::normalize(forward);
+    const glm::dvec3 right = glm::normalize(glm::cross(f, up));
+    const glm::dvec3 cameraUp = glm::cross(right, f);
+    const double scaleY = 1.0 / std::tan(0.5 * fovY), scaleX = scaleY * double(height) / double(width);
+    frame.viewRight = glm::vec4(glm::vec3(right), float(scaleX));
+    frame.viewUp = glm::vec4(glm::vec3(cameraUp), float(scaleY));
+    frame.viewForward = glm::vec4(glm::vec3(f), float(nearPlane));
+    // The reversed-Z projection of the renderer: depth(d) = n f / ((f - n) d) - n / (f - n).
+    frame.depthMap = glm::vec4(float(nearPlane * farPlane / (farPlane - nearPlane)),
+                               float(nearPlane / (farPlane - nearPlane)), float(width), float(height));
+    frame.occlusion = glm::vec4(float(columns), float(rows), float(tilePixels), 0.0f);
+}
+
+bool tilesHideSphere(const shared::CullFrame& frame, const std::vector<float>* tiles, const glm::vec4& sphere,
+                     uint32_t maxTiles) {
+    glm::uvec4 rect;
+    float nearest = 0.0f;
+    if (!tiles || !shared::occlusionRect(glm::vec3(sphere), sphere.w, frame, maxTiles, rect, nearest))
+        return false;
+    const uint32_t columns = uint32_t(frame.occlusion.x);
+    for (uint32_t y = rect.y; y <= rect.w; ++y)
+        for (uint32_t x = rect.x; x <= rect.z; ++x)
+            if ((*tiles)[size_t(y) * columns + x] <= nearest) return false;
+    return true;
+}
+
+CullPages selectCullPages(const CullInputs& inputs) {
+    CullPages out;
+    DrawListLayout& layout = out.layout;
     layout.base.assign(inputs.shapeCount, 0);
     layout.capacity.assign(inputs.shapeCount, 0);
-    for (const CullBatchInput& batch : inputs.batches) {
-        for (size_t s = 0; s < batch.set->countPerShape.size(); ++s) {
-            layout.capacity[batch.shapeBase + s] += batch.set->countPerShape[s];
+    for (uint32_t b = 0; b < inputs.batches.size(); ++b) {
+        const CullBatchInput& batch = inputs.batches[b];
+        const uint32_t records = uint32_t(batch.set->records.size());
+        const glm::vec3 origin(batch.cellOrigin - inputs.camera); // as the pass receives it
+        // Records are sorted by shape: walk the shapes' ranges alongside the pages.
+        const std::vector<uint32_t>& perShape = batch.set->countPerShape;
+        uint32_t shape = 0, shapeEnd = perShape.empty() ? records : perShape[0];
+        for (uint32_t page = 0, first = 0; first < records; ++page, first += kArenaPageRecords) {
+            const uint32_t count = std::min(kArenaPageRecords, records - first);
+            if (batch.pageSpheres) {
+                const glm::vec4& sphere = (*batch.pageSpheres)[page];
+                if (!pageMayBeVisible(sphere, origin, inputs.frame)) {
+                    out.skippedTerminals += count;
+                    continue;
+                }
+                // A page is larger than a terminal: worth more tile lookups.
+                if (std::isfinite(sphere.w) &&
+                    tilesHideSphere(inputs.frame, inputs.occlusionTiles,
+                                    glm::vec4(glm::vec3(sphere) + origin, sphere.w), kPageMaxTiles)) {
+                    out.skippedTerminals += count;
+                    out.occludedTerminals += count;
+                    continue;
+                }
+            }
+            out.pages.emplace_back(b, batch.pages ? (*batch.pages)[page] : first, count, 0u);
+            out.terminals += count;
+            for (uint32_t r = first; r < first + count;) {
+                while (r >= shapeEnd && shape + 1 < perShape.size()) shapeEnd += perShape[++shape];
+                if (r >= shapeEnd) shapeEnd = records; // counts short of the records: the last shape
+                const uint32_t run = std::min(shapeEnd, first + count) - r;
+                layout.capacity[batch.shapeBase + shape] += run;
+                r += run;
+            }
         }
     }
     for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
         layout.base[s] = uint32_t(layout.total);
         layout.total += layout.capacity[s];
     }
-    return layout;
+    return out;
 }
 
 } // namespace hexlod::lod

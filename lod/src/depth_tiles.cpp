@@ -42,6 +42,12 @@ std::array<uint32_t, size_t(TileTest::Count)> DepthTiles::dropped() const {
     return counts;
 }
 
+std::vector<float> DepthTiles::read() const {
+    std::vector<float> tiles(size_t(columns_) * rows_);
+    gl::glGetTextureImage(texture_, 0, GL_RED, GL_FLOAT, GLsizei(tiles.size() * sizeof(float)), tiles.data());
+    return tiles;
+}
+
 void DepthTiles::build(uint32_t depthTexture) const {
     program_.use();
     gl::glBindTextureUnit(0, depthTexture);
@@ -50,7 +56,7 @@ void DepthTiles::build(uint32_t depthTexture) const {
     program_.set("samples", samples_);
     gl::glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     gl::glDispatchCompute((columns_ + kLocalSize - 1) / kLocalSize, (rows_ + kLocalSize - 1) / kLocalSize, 1);
-    gl::glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    gl::glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     // The depth texture stays attached to the target being drawn: left bound, any later
     // program sampling unit 0 would read it while writing it.
     gl::glBindTextureUnit(0, 0);

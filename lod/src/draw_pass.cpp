@@ -27,6 +27,12 @@ PassTimer::PassTimer(bool enabled, PassTimes& times) : enabled_(enabled), times_
     start_ = std::chrono::steady_clock::now();
 }
 
+void PassTimer::restart() {
+    if (!enabled_) return;
+    gl::glFinish();
+    start_ = std::chrono::steady_clock::now();
+}
+
 void PassTimer::end(DrawPass pass) {
     if (!enabled_) return;
     gl::glFinish();

@@ -14,7 +14,9 @@ namespace {
 constexpr uint32_t kWorkgroupSize = 64; // cull_finalize.comp's local size
 
 // The GLSL binding of each buffer (terminal_cull.comp, cull_finalize.comp).
-constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7};
+constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7, 11};
+// The occlusion tiles' texture unit: the pass runs before any draw binds textures.
+constexpr uint32_t kOcclusionUnit = 0;
 
 } // namespace
 
@@ -61,20 +63,17 @@ uint64_t GpuCull::byteSize() const {
 
 void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const MeshDrawInfo> meshes) {
     shapeCount_ = inputs.shapeCount;
-    layout_ = layoutDrawLists(inputs);
+    CullPages selected = selectCullPages(inputs);
+    layout_ = std::move(selected.layout);
+    stats_ = {selected.terminals, selected.skippedTerminals, selected.occludedTerminals};
+    const std::vector<glm::uvec4>& workgroups = selected.pages; // one per page
 
     std::vector<shared::CullBatch> batches;
-    std::vector<glm::uvec4> workgroups; // one per arena page
     batches.reserve(inputs.batches.size());
     for (const CullBatchInput& input : inputs.batches) {
-        const uint32_t count = uint32_t(input.set->records.size());
         shared::CullBatch batch{};
         batch.origin = glm::vec3(input.cellOrigin - inputs.camera);
         batch.shapeBase = input.shapeBase;
-        for (uint32_t page = 0; page * kArenaPageRecords < count; ++page) {
-            workgroups.emplace_back(uint32_t(batches.size()), (*input.pages)[page],
-                                    std::min(kArenaPageRecords, count - page * kArenaPageRecords), 0u);
-        }
         batches.push_back(batch);
     }
     std::vector<glm::uvec4> shapes(shapeCount_), meshInfo(shapeCount_);
@@ -100,10 +99,14 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
                                   GL_UNSIGNED_INT, nullptr);
     reserve(kLists, layout_.total * sizeof(gpu::GpuTerminal));
     reserve(kCommands, uint64_t(shapeCount_) * (kLod4CommandStride + kImpostorCommandStride));
+    reserve(kOccluded, sizeof(uint32_t));
+    gl::glClearNamedBufferSubData(buffers_[kOccluded].id, GL_R32UI, 0, sizeof(uint32_t), GL_RED_INTEGER,
+                                  GL_UNSIGNED_INT, nullptr);
 
     gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[kFrame].id);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, arena);
-    for (BufferIndex index : {kBatches, kWorkgroups, kShapes, kCounters, kLists, kMeshes, kCommands}) {
+    for (BufferIndex index :
+         {kBatches, kWorkgroups, kShapes, kCounters, kLists, kMeshes, kCommands, kOccluded}) {
         gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindings[index], buffers_[index].id);
     }
     if (inputs.treeBuffer) gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, inputs.treeBuffer);
@@ -111,8 +114,12 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     if (groups > 0) {
         cull_.use();
         cull_.set("workgroupCount", groups);
+        // Without tiles the frame says so (occlusion.x = 0) and the sampler is never read.
+        gl::glBindTextureUnit(kOcclusionUnit, inputs.occlusionTexture);
+        cull_.set("occlusionTiles", int(kOcclusionUnit));
         const uint32_t x = std::min<uint32_t>(groups, 65535), y = (groups + x - 1) / x;
         gl::glDispatchCompute(x, y, 1);
+        gl::glBindTextureUnit(kOcclusionUnit, 0);
     }
     gl::glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     finalize_.use();
@@ -128,6 +135,12 @@ std::vector<glm::uvec4> GpuCull::readCounters() const {
         gl::glGetNamedBufferSubData(buffers_[kCounters].id, 0,
                                     GLsizeiptr(counters.size() * sizeof(glm::uvec4)), counters.data());
     return counters;
+}
+
+uint32_t GpuCull::readOccluded() const {
+    uint32_t occluded = 0;
+    gl::glGetNamedBufferSubData(buffers_[kOccluded].id, 0, sizeof occluded, &occluded);
+    return occluded;
 }
 
 std::vector<gpu::GpuTerminal> GpuCull::readLists() const {

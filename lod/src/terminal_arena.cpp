@@ -1,5 +1,6 @@
 // Paged allocation over a fixed GL buffer, with LRU eviction of whole batches.
 #include "hexlod/lod/terminal_arena.h"
+#include "hexlod/lod/page_bounds.h"
 #include "hexlod/render/gl_api.h"
 
 #include <algorithm>
@@ -57,7 +58,7 @@ bool TerminalArena::evictOne() {
     }
     if (oldest == slots_.end()) return false;
     // Freed pages go back in descending order so the lowest is reused first.
-    std::vector<uint32_t> pages = std::move(oldest->second.pages);
+    std::vector<uint32_t> pages = std::move(oldest->second.batch.pages);
     std::sort(pages.begin(), pages.end(), std::greater<>());
     free_.insert(free_.end(), pages.begin(), pages.end());
     stats_.residentRecords -= oldest->second.records;
@@ -66,10 +67,10 @@ bool TerminalArena::evictOne() {
     return true;
 }
 
-const std::vector<uint32_t>* TerminalArena::acquire(uint64_t key, const grammar::TerminalSet& set) {
+const ArenaBatch* TerminalArena::acquire(uint64_t key, const grammar::TerminalSet& set) {
     if (auto it = slots_.find(key); it != slots_.end()) {
         it->second.lastUsed = frame_;
-        return &it->second.pages;
+        return &it->second.batch;
     }
     const uint64_t records = set.records.size();
     const uint64_t needed = (records + kArenaPageRecords - 1) / kArenaPageRecords;
@@ -85,25 +86,27 @@ const std::vector<uint32_t>* TerminalArena::acquire(uint64_t key, const grammar:
     Slot slot;
     slot.records = records;
     slot.lastUsed = frame_;
+    std::vector<uint32_t>& pages = slot.batch.pages;
     for (uint64_t p = 0; p < needed; ++p) {
-        slot.pages.push_back(free_.back());
+        pages.push_back(free_.back());
         free_.pop_back();
     }
     // One upload per run of consecutive pages.
     for (uint64_t p = 0; p < needed;) {
         uint64_t run = 1;
-        while (p + run < needed && slot.pages[p + run] == slot.pages[p] + run * kArenaPageRecords) ++run;
+        while (p + run < needed && pages[p + run] == pages[p] + run * kArenaPageRecords) ++run;
         const uint64_t first = p * kArenaPageRecords,
                        count = std::min(records - first, run * kArenaPageRecords);
-        gl::glNamedBufferSubData(buffer_, GLintptr(uint64_t(slot.pages[p]) * sizeof(grammar::TerminalRecord)),
+        gl::glNamedBufferSubData(buffer_, GLintptr(uint64_t(pages[p]) * sizeof(grammar::TerminalRecord)),
                                  GLsizeiptr(count * sizeof(grammar::TerminalRecord)),
                                  set.records.data() + first);
         p += run;
     }
+    slot.batch.spheres = pageSpheres(set);
     stats_.residentRecords += records;
     ++stats_.uploads;
     stats_.uploadedBytes += records * sizeof(grammar::TerminalRecord);
-    return &(slots_[key] = std::move(slot)).pages;
+    return &(slots_[key] = std::move(slot)).batch;
 }
 
 ArenaStats TerminalArena::stats() const {

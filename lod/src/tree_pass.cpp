@@ -1,10 +1,47 @@
 #include "hexlod/lod/tree_pass.h"
+#include "hexlod/lod/cull_inputs.h"
 #include "hexlod/lod/gpu_cull.h"
+#include "hexlod/lod/page_bounds.h"
 #include "hexlod/render/gl_api.h"
 
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <limits>
 #include <map>
 
 namespace hexlod::lod {
+namespace {
+
+constexpr uint32_t kTreeChunk = 32;
+// A chunk is larger than a tree: worth more tile lookups (as an arena page).
+constexpr uint32_t kChunkMaxTiles = 256;
+
+// Interleaves the bits of two 16-bit values: neighbours in the plane stay near in the order.
+uint32_t morton(uint32_t x, uint32_t y) {
+    auto spread = [](uint32_t v) {
+        v &= 0xffffu;
+        v = (v | (v << 8)) & 0x00ff00ffu;
+        v = (v | (v << 4)) & 0x0f0f0f0fu;
+        v = (v | (v << 2)) & 0x33333333u;
+        return (v | (v << 1)) & 0x55555555u;
+    };
+    return spread(x) | (spread(y) << 1);
+}
+
+// The sphere around points `centres[i]` each grown by radii[i].
+glm::vec4 enclose(const std::vector<glm::vec3>& centres, const std::vector<float>& radii) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (const glm::vec3& c : centres) lo = glm::min(lo, c), hi = glm::max(hi, c);
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    float radius = 0.0f;
+    for (size_t i = 0; i < centres.size(); ++i)
+        radius = std::max(radius, glm::length(centres[i] - centre) + radii[i]);
+    // Padded as the arena's pages are: the tests that use it run in float.
+    return {centre, radius + 0.01f + 1e-5f * (radius + glm::length(centre))};
+}
+
+} // namespace
 
 TreePass::~TreePass() {
     for (uint32_t buffer : {byId_, instances_, spheres_})
@@ -35,7 +72,8 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
         const cells::Batch& batch = catalog.batch(b);
         if (batch.grammar < buildingGrammars) continue;
         const scene::GrammarBuildings& grammar = catalog.grammar(batch.grammar);
-        ranges_[b] = {uint32_t(instances.size()), uint32_t(batch.buildings.size())};
+        const size_t first = instances.size();
+        ranges_[b] = {uint32_t(first), uint32_t(batch.buildings.size())};
         for (uint32_t member : batch.buildings) {
             const grammar::BuildingInput& tree = grammar.buildings[member];
             glm::dvec2 centre(0.0);
@@ -47,6 +85,14 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
             trees_[tree.id] = t;
             instances.push_back(t);
         }
+        // Neighbours next to each other, so that a chunk is a patch of the cell.
+        glm::vec2 lo(std::numeric_limits<float>::max());
+        for (size_t i = first; i < instances.size(); ++i) lo = glm::min(lo, glm::vec2(instances[i]));
+        std::sort(instances.begin() + std::ptrdiff_t(first), instances.end(),
+                  [&](const auto& a, const auto& c) {
+                      const glm::uvec2 ka = glm::uvec2(glm::vec2(a) - lo), kc = glm::uvec2(glm::vec2(c) - lo);
+                      return morton(ka.x, ka.y) < morton(kc.x, kc.y);
+                  });
     }
     // Without trees each buffer holds one unused element, since the cull pass binds the tree
     // buffer whatever the scene and GL has no empty buffer storage; they count as nothing.
@@ -71,6 +117,7 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
     if (!textures_.upload(layout, atlases, lookup.buildTable(64), error)) return false;
     upload(spheres_, spheres);
     bytes_ += spheres.size() * sizeof(glm::vec4) + textures_.byteSize();
+    buildChunks(instances, spheres);
     render::ShaderLibrary library = lodShaderLibrary();
     program_ = render::ShaderProgram::build(library,
                                             {{render::ShaderStage::Vertex, "tree_billboard.vert"},
@@ -90,12 +137,68 @@ void TreePass::begin(const render::ShaderProgram& program) const {
     gl::glBindVertexArray(vao_);
 }
 
-uint32_t TreePass::draw(uint32_t batch, bool allBillboards) const {
-    const auto [first, count] = ranges_.at(batch);
-    if (count == 0 || !vao_) return 0;
+void TreePass::buildChunks(const std::vector<glm::vec4>& instances,
+                           const std::vector<glm::vec4>& speciesSpheres) {
+    chunkRanges_.assign(ranges_.size(), {0u, 0u});
+    std::vector<glm::vec3> centres, roots;
+    std::vector<float> radii, zero;
+    for (size_t b = 0; b < ranges_.size(); ++b) {
+        const auto [first, count] = ranges_[b];
+        chunkRanges_[b].first = uint32_t(chunks_.size());
+        for (uint32_t c = first; c < first + count; c += kTreeChunk) {
+            Chunk chunk;
+            chunk.first = c;
+            chunk.count = std::min(kTreeChunk, first + count - c);
+            centres.clear(), roots.clear(), radii.clear();
+            for (uint32_t i = c; i < c + chunk.count; ++i) {
+                const glm::vec4& tree = instances[i];
+                // A tree of no species is never a billboard: its point still bounds the chunk.
+                const glm::vec4 species = tree.w < 0.0f ? glm::vec4(0.0f) : speciesSpheres[size_t(tree.w)];
+                roots.emplace_back(tree);
+                centres.push_back(glm::vec3(tree) + glm::vec3(species));
+                radii.push_back(species.w);
+            }
+            zero.assign(roots.size(), 0.0f);
+            chunk.sphere = enclose(centres, radii);
+            chunk.roots = enclose(roots, zero);
+            chunks_.push_back(chunk);
+        }
+        chunkRanges_[b].second = uint32_t(chunks_.size()) - chunkRanges_[b].first;
+    }
+    bytes_ += chunks_.size() * sizeof(Chunk);
+}
+
+uint32_t TreePass::draw(uint32_t batch, bool allBillboards, const shared::CullFrame& frame,
+                        const std::vector<float>* occlusionTiles) {
+    if (!vao_) return 0;
+    // frame.trees: x, the squared distance from which a tree is a billboard (< 0: never);
+    // yzw, the trees' origin minus the camera.
+    const float cut = frame.trees.x;
+    if (!allBillboards && cut < 0.0f) return 0;
+    const glm::vec3 offset(frame.trees.y, frame.trees.z, frame.trees.w);
+    firsts_.clear(), counts_.clear();
+    uint32_t submitted = 0;
+    const auto [firstChunk, chunkCount] = chunkRanges_.at(batch);
+    for (uint32_t c = firstChunk; c < firstChunk + chunkCount; ++c) {
+        const Chunk& chunk = chunks_[c];
+        // Every root nearer than the cut: every tree is geometry, drawn by the terminal passes.
+        const float farthestRoot = glm::length(glm::vec3(chunk.roots) + offset) + chunk.roots.w;
+        if (!allBillboards && farthestRoot * farthestRoot < cut) continue;
+        if (!pageMayBeVisible(chunk.sphere, offset, frame)) continue;
+        if (tilesHideSphere(frame, occlusionTiles,
+                            glm::vec4(glm::vec3(chunk.sphere) + offset, chunk.sphere.w), kChunkMaxTiles))
+            continue;
+        // Chunks follow each other in the buffer: adjacent ones make one range.
+        if (!counts_.empty() && firsts_.back() + counts_.back() == int32_t(6 * chunk.first))
+            counts_.back() += int32_t(6 * chunk.count);
+        else
+            firsts_.push_back(int32_t(6 * chunk.first)), counts_.push_back(int32_t(6 * chunk.count));
+        submitted += chunk.count;
+    }
+    if (submitted == 0) return 0;
     program_.set("allBillboards", uint32_t(allBillboards));
-    gl::glDrawArrays(GL_TRIANGLES, GLint(6 * first), GLsizei(6 * count));
-    return count;
+    gl::glMultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(counts_.size()));
+    return submitted;
 }
 
 } // namespace hexlod::lod

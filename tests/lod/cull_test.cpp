@@ -19,8 +19,11 @@ namespace {
 
 using grammar::TerminalSet;
 
-// A terminal set of `count` random terminals of `shapes` shapes, sorted by shape.
-TerminalSet randomSet(std::mt19937& random, uint32_t count, uint32_t shapes, float extent) {
+// A terminal set of `count` random terminals of `shapes` shapes, sorted by shape; `coherent`
+// sorts each shape's terminals along x too, so that an arena page holds neighbours, as a real
+// set's pages hold a building's windows (and the pass can skip pages outside the frustum).
+TerminalSet randomSet(std::mt19937& random, uint32_t count, uint32_t shapes, float extent,
+                      bool coherent = false) {
     std::uniform_real_distribution<float> position(-extent, extent), unit(-1.0f, 1.0f), size(0.05f, 6.0f),
         ratio(0.0f, 2.0f);
     std::uniform_int_distribution<uint32_t> shape(0, shapes - 1);
@@ -32,8 +35,9 @@ TerminalSet randomSet(std::mt19937& random, uint32_t count, uint32_t shapes, flo
             glm::vec3(position(random), position(random), position(random) * 0.2f), axes[0], axes[1], axes[2],
             glm::vec2(size(random), size(random)), ratio(random), uint16_t(shape(random)), i));
     }
-    std::stable_sort(records.begin(), records.end(), [](const auto& a, const auto& b) {
-        return (a.shapeAndDepth & 0xffff) < (b.shapeAndDepth & 0xffff);
+    std::stable_sort(records.begin(), records.end(), [&](const auto& a, const auto& b) {
+        return std::tuple(a.shapeAndDepth & 0xffff, coherent ? a.position[0] : 0.0f) <
+               std::tuple(b.shapeAndDepth & 0xffff, coherent ? b.position[0] : 0.0f);
     });
     TerminalSet set;
     set.countPerShape.assign(shapes, 0);
@@ -53,6 +57,19 @@ identity(const gpu::GpuTerminal& t) {
 
 class CullTest : public render::GlTest {};
 
+// A tile grid of farthest depths as the cull pass reads it (DepthTiles' format).
+struct OcclusionTexture {
+    uint32_t id = 0, columns, rows;
+    OcclusionTexture(uint32_t c, uint32_t r) : columns(c), rows(r) {
+        gl::glCreateTextures(GL_TEXTURE_2D, 1, &id);
+        gl::glTextureStorage2D(id, 1, GL_R32F, GLsizei(columns), GLsizei(rows));
+    }
+    ~OcclusionTexture() { gl::glDeleteTextures(1, &id); }
+    void upload(const std::vector<float>& tiles) const {
+        gl::glTextureSubImage2D(id, 0, 0, 0, GLsizei(columns), GLsizei(rows), GL_RED, GL_FLOAT, tiles.data());
+    }
+};
+
 TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
     GpuCull cull;
     std::string error;
@@ -62,7 +79,9 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
     std::mt19937 random(2024);
     const uint32_t shapesPerGrammar = 7;
     std::vector<TerminalSet> sets;
-    for (int b = 0; b < 12; ++b) sets.push_back(randomSet(random, 1000 + 937 * b, shapesPerGrammar, 150.0f));
+    for (int b = 0; b < 12; ++b)
+        sets.push_back(randomSet(random, 1000 + 937 * b, shapesPerGrammar, 150.0f, b % 3 != 0));
+    uint64_t skipped = 0, occludedPages = 0;
     for (int trial = 0; trial < 6; ++trial) {
         arena.beginFrame(trial);
         CullInputs inputs;
@@ -74,11 +93,11 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         std::uniform_real_distribution<double> offset(-200.0, 200.0), angle(0.0, 6.283);
         inputs.camera = cityOrigin + glm::dvec3(offset(random), offset(random), 1.7 + 40.0 * (trial % 3));
         for (size_t b = 0; b < sets.size(); ++b) {
-            const std::vector<uint32_t>* pages = arena.acquire(b, sets[b]);
-            ASSERT_TRUE(pages);
-            inputs.batches.push_back({&sets[b], pages,
+            const ArenaBatch* resident = arena.acquire(b, sets[b]);
+            ASSERT_TRUE(resident);
+            inputs.batches.push_back({&sets[b], &resident->pages,
                                       cityOrigin + glm::dvec3(250.0 * (b % 4), 250.0 * (b / 4), 0.0),
-                                      uint32_t(b % 2) * shapesPerGrammar});
+                                      uint32_t(b % 2) * shapesPerGrammar, &resident->spheres});
         }
         // Roughly toward the middle of the batches, so every trial sees some and misses some.
         const glm::dvec3 middle = cityOrigin + glm::dvec3(375.0, 250.0, 0.0) - inputs.camera;
@@ -88,6 +107,22 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         scene::LodProfile profile;
         profile.maxScreenSpaceError = 1.0 + trial;
         inputs.frame = makeCullFrame(frustum, profile, 0.3 + 0.4 * trial, 720, 0.2, true);
+        // Odd trials test occlusion too, against a wall over the screen's left half at 40 to
+        // 160 m (each tile's farthest depth) and open sky on the right.
+        const uint32_t columns = 80, rows = 45;
+        std::vector<float> tiles(columns * rows, 0.0f);
+        OcclusionTexture texture(columns, rows);
+        if (trial % 2) {
+            setOcclusion(inputs.frame, glm::dvec3(std::cos(a), std::sin(a), -0.1), glm::dvec3(0, 0, 1),
+                         0.3 + 0.4 * trial, 0.5, 800.0, 1280, 720, columns, rows, 16);
+            std::uniform_real_distribution<float> wall(40.0f, 160.0f);
+            for (uint32_t y = 0; y < rows; ++y)
+                for (uint32_t x = 0; x < columns / 2; ++x)
+                    tiles[y * columns + x] = inputs.frame.depthMap.x / wall(random) - inputs.frame.depthMap.y;
+            texture.upload(tiles);
+            inputs.occlusionTexture = texture.id;
+            inputs.occlusionTiles = &tiles;
+        }
 
         CullResult reference = cullOnCpu(inputs);
         std::vector<MeshDrawInfo> meshes(inputs.shapeCount, MeshDrawInfo{36, 0, 0});
@@ -129,7 +164,24 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         // Some of everything: the trial would prove little if all were culled or all LOD4.
         EXPECT_GT(visible, 0u);
         EXPECT_GT(reference.culled, 0u);
+        const GpuCull::PageStats pages = cull.pageStats();
+        EXPECT_EQ(pages.terminals + pages.skippedTerminals, reference.culled + visible);
+        if (trial % 2) {
+            EXPECT_GT(reference.occluded, 0u) << "trial " << trial;
+            occludedPages += pages.occludedTerminals;
+            // Hidden pages hold terminals the frustum or backface test would cull anyway; with
+            // no page skipped, the pass hides exactly the reference's terminals.
+            CullInputs everyPage = inputs;
+            for (CullBatchInput& batch : everyPage.batches) batch.pageSpheres = nullptr;
+            cull.run(everyPage, arena.buffer(), meshes);
+            EXPECT_EQ(cull.readOccluded(), reference.occluded) << "trial " << trial;
+        }
+        skipped += pages.skippedTerminals;
     }
+    // Pages were skipped whole, outside the frustum and behind the wall, and the lists above
+    // still match the reference, which skips none.
+    EXPECT_GT(skipped, 0u);
+    EXPECT_GT(occludedPages, 0u);
 }
 
 // Hand-placed terminals: a 2 m x 2 m facade tile facing -y at the origin of its cell.

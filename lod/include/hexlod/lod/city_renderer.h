@@ -58,8 +58,8 @@ struct CityRendererOptions {
     // GL time goes, on any GL, timer queries or not. The finishes cost a tiled rasteriser
     // its overlap between passes, so a timed frame is slower than an untimed one.
     bool timePasses = false;
-    // Drops LOD3 impostors and tree billboards whole that the depth drawn before them hides
-    // (DepthTiles). Off only to check that it changes no pixel.
+    // Culls terminals, and drops LOD3 impostors and tree billboards whole, that the depth drawn
+    // before them hides (DepthTiles). Off only to check that it changes no pixel.
     bool dropHidden = true;
 };
 
@@ -69,9 +69,18 @@ struct FrameStats {
     // (timer queries read 0 on llvmpipe, so the frame ends with glFinish).
     double scheduleMs = 0.0, generationMs = 0.0, uploadMs = 0.0, cullMs = 0.0, drawMs = 0.0, gpuWaitMs = 0.0,
            frameMs = 0.0;
+    // The cache's disk tier during the frame, on any thread: reading and decoding evicted
+    // sets back, encoding and writing new ones (like generationMs, part of scheduleMs when
+    // the frame generates its own batches).
+    double diskLoadMs = 0.0, diskStoreMs = 0.0;
     uint64_t triangles = 0, draws = 0;
     std::array<uint64_t, 5> terminalsPerLod{}; // LOD2..LOD4 drawn terminals (0 and 1 unused)
     std::array<uint32_t, 5> cellsPerLod{};     // cells in view: 0 and 1 extruded, 4 with terminal sets
+    // Terminals of the batches drawn: culled one by one on the GPU, or skipped with their
+    // arena page, whose bounds lie outside the frustum.
+    uint64_t cullTerminals = 0, cullSkippedTerminals = 0;
+    // Terminals the base volumes and ground hide: skipped with their page, or culled one by one.
+    uint64_t cullOccludedTerminals = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint32_t treeBillboardsOccluded = 0;      // of those, dropped whole as hidden (DepthTiles)

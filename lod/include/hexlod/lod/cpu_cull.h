@@ -20,6 +20,7 @@ struct CullResult {
     std::vector<std::vector<CulledTerminal>> lod4, impostor;
     std::array<uint64_t, 5> terminalsPerLod{}; // index = LOD (0 and 1 unused here)
     uint64_t culled = 0;
+    uint64_t occluded = 0; // of the culled, those the occlusion tiles hid
 };
 
 CullResult cullOnCpu(const CullInputs& inputs);

@@ -20,6 +20,10 @@ struct CullBatchInput {
     const std::vector<uint32_t>* pages = nullptr; // where the arena holds its records (TerminalArena)
     glm::dvec3 cellOrigin{0.0};                   // world, what record positions are relative to
     uint32_t shapeBase = 0;                       // global index of its grammar's shape 0
+    // Per page, its bounds (pageSpheres): the GPU pass skips pages wholly outside the frustum.
+    // Null: every page is culled terminal by terminal. The CPU reference never skips a page,
+    // so that tests comparing the two also check that skipping loses no visible terminal.
+    const std::vector<glm::vec4>* pageSpheres = nullptr;
 };
 
 struct CullInputs {
@@ -33,6 +37,11 @@ struct CullInputs {
     uint32_t treeBuffer = 0;
     shared::CullFrame frame{};
     glm::dvec3 camera{0.0};
+    // The occlusion test's tiles (frame.occlusion, setOcclusion): the texture the GPU pass
+    // reads, and the same values on the CPU, row by row from the bottom, for the CPU
+    // reference and for skipping hidden pages whole. Both or neither.
+    uint32_t occlusionTexture = 0;
+    const std::vector<float>* occlusionTiles = nullptr;
 };
 
 // Frame constants: the frustum's planes relative to the camera, and the distances from which
@@ -47,16 +56,40 @@ shared::CullFrame makeCullFrame(const cells::Frustum& frustum, const scene::LodP
 void setTreeCut(shared::CullFrame& frame, double billboardDistance, const glm::dvec3& treeOrigin,
                 const glm::dvec3& camera);
 
+// Turns the occlusion test on in `frame` (see occlusionRect in cull_shared.h): the camera's
+// axes and projection, and a grid of `columns` x `rows` tiles of `tilePixels` pixels over a
+// `width` x `height` viewport.
+void setOcclusion(shared::CullFrame& frame, const glm::dvec3& forward, const glm::dvec3& up, double fovY,
+                  double nearPlane, double farPlane, uint32_t width, uint32_t height, uint32_t columns,
+                  uint32_t rows, uint32_t tilePixels);
+
+// Whether `tiles` (as CullInputs::occlusionTiles; null: none) hide a camera-relative sphere
+// (xyz, radius) that covers at most `maxTiles` tiles: the test terminal_cull.comp makes per
+// terminal, on the CPU.
+bool tilesHideSphere(const shared::CullFrame& frame, const std::vector<float>* tiles, const glm::vec4& sphere,
+                     uint32_t maxTiles);
+
 // The distance from which a LOD of geometric error `error` is enough.
 double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,
                    uint32_t viewportHeight);
 
-// Per-shape layout of the draw lists for these batches: list capacity per shape is the number
-// of its terminals among the batches; bases are their prefix sums.
+// Per-shape layout of the draw lists: list capacity per shape is the number of its terminals
+// in the pages the pass culls; bases are their prefix sums.
 struct DrawListLayout {
     std::vector<uint32_t> base, capacity; // per global shape
     uint64_t total = 0;
 };
-DrawListLayout layoutDrawLists(const CullInputs& inputs);
+
+// The pages the GPU pass culls terminal by terminal (every page of every batch but those its
+// sphere puts wholly outside the frustum or behind the occlusion tiles), one uvec4 each: batch index, first
+// arena record, records, 0; and the draw-list layout for their terminals.
+struct CullPages {
+    std::vector<glm::uvec4> pages;
+    DrawListLayout layout;
+    uint64_t terminals = 0;         // in those pages
+    uint64_t skippedTerminals = 0;  // in the pages left out
+    uint64_t occludedTerminals = 0; // of those, in pages the occlusion tiles hide
+};
+CullPages selectCullPages(const CullInputs& inputs);
 
 } // namespace hexlod::lod

@@ -33,6 +33,7 @@ inline float uintBitsToFloat(uint bits) {
 inline int asSigned(uint bits) {
     return int32_t(bits);
 }
+using std::floor;
 using std::sqrt;
 #define HEXLOD_PRECISE
 #define HEXLOD_OUT(type) type&
@@ -53,6 +54,12 @@ struct CullFrame {
                       // transition band; w: 1 when impostors may be used at all
     vec4 trees;       // x: squared distance from which a tree is its billboard (< 0: never);
                       // yzw: the origin of tree positions minus the camera
+    // The occlusion test (occlusionRect): the camera's axes, the projection and the tiles.
+    vec4 viewRight;   // xyz: the camera's right axis; w: the projection's x scale
+    vec4 viewUp;      // xyz: its up axis; w: the projection's y scale
+    vec4 viewForward; // xyz: its forward axis; w: the near plane's distance
+    vec4 depthMap;    // window depth (reversed-Z) of view distance d: x / d - y; zw: viewport pixels
+    vec4 occlusion;   // x, y: tiles across and down (x = 0: no occlusion test); z: tile pixels
 };
 
 // Per global shape (std430 uvec4): x, the first slot of its draw lists; y, their capacity
@@ -131,9 +138,10 @@ HEXLOD_FN bool treeIsBillboard(vec3 treePosition, CullFrame frame) {
 
 // Frustum, backface and LOD for one terminal whose corner lies at `corner` relative to the
 // camera; `impostors` says whether its shape has an impostor to fall back on. `transition` is
-// the LOD4 -> LOD3 or LOD3 -> LOD2 blend in [0, 1] (0: this LOD fully), for the draw passes.
+// the LOD4 -> LOD3 or LOD3 -> LOD2 blend in [0, 1] (0: this LOD fully), for the draw passes;
+// `sphere` the camera-relative sphere it was culled with, for the occlusion test.
 HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, bool impostors,
-                                HEXLOD_OUT(float) transition) {
+                                HEXLOD_OUT(float) transition, HEXLOD_OUT(vec4) sphere) {
     transition = 0.0f;
     vec3 axisX, axisY, axisZ;
     terminalAxes(t, axisX, axisY, axisZ);
@@ -143,6 +151,7 @@ HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, boo
     HEXLOD_PRECISE vec3 centre = corner + axisX * (0.5f * width) + axisY * (0.5f * height);
     HEXLOD_PRECISE float radiusSquared = 0.25f * (width * width + height * height + 4.0f * depth * depth);
     HEXLOD_PRECISE float radius = sqrt(radiusSquared);
+    sphere = vec4(centre, radius);
     for (int i = 0; i < 6; ++i) {
         HEXLOD_PRECISE float distance = dot3(vec3(frame.planes[i]), centre) + frame.planes[i].w;
         if (distance < -radius) return HEXLOD_CULLED;
@@ -164,6 +173,53 @@ HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, boo
         transition = (distance - start) / (threshold - start);
     }
     return lod;
+}
+
+// Occlusion (a hierarchical-Z test of one level): before the pass, the frame has drawn its
+// opaque base volumes and ground, and reduced their depth to the farthest depth of each tile
+// of occlusion.z pixels (DepthTiles). A sphere is hidden when the window depth of its nearest
+// point is farther than the farthest depth of every tile its screen rectangle covers.
+// occlusionRect finds those tiles and that depth; each caller then compares the tiles it
+// holds (a texture on the GPU, a copy on the CPU) with `tiles <= nearestDepth` meaning "may
+// show it". False means the sphere cannot be found hidden: no occlusion test this frame, the
+// sphere reaches the near plane, or it covers more than `maxTiles` tiles.
+#define HEXLOD_OCCLUSION_MAX_TILES 16u
+HEXLOD_FN bool occlusionRect(vec3 centre, float radius, CullFrame frame, uint maxTiles,
+                             HEXLOD_OUT(uvec4) tiles, HEXLOD_OUT(float) nearestDepth) {
+    tiles = uvec4(0u, 0u, 0u, 0u);
+    nearestDepth = 0.0f;
+    if (frame.occlusion.x == 0.0f) return false;
+    HEXLOD_PRECISE float z = dot3(vec3(frame.viewForward), centre);
+    // A centimetre and a part in 1e4 nearer than the sphere: the occluders' rasterised depth
+    // and this one are rounded differently.
+    HEXLOD_PRECISE float nearZ = z - radius - 0.01f - 1e-4f * z;
+    HEXLOD_PRECISE float farZ = z + radius;
+    if (!(nearZ > frame.viewForward.w)) return false;
+    HEXLOD_PRECISE float x = dot3(vec3(frame.viewRight), centre);
+    HEXLOD_PRECISE float y = dot3(vec3(frame.viewUp), centre);
+    // Over the box around the sphere, x / z is least at its low x over the nearest z when that
+    // x is negative, else over the farthest z; the other bounds likewise.
+    HEXLOD_PRECISE float xLo = x - radius, xHi = x + radius, yLo = y - radius, yHi = y + radius;
+    HEXLOD_PRECISE float ndcX0 = frame.viewRight.w * (xLo / (xLo < 0.0f ? nearZ : farZ));
+    HEXLOD_PRECISE float ndcX1 = frame.viewRight.w * (xHi / (xHi > 0.0f ? nearZ : farZ));
+    HEXLOD_PRECISE float ndcY0 = frame.viewUp.w * (yLo / (yLo < 0.0f ? nearZ : farZ));
+    HEXLOD_PRECISE float ndcY1 = frame.viewUp.w * (yHi / (yHi > 0.0f ? nearZ : farZ));
+    HEXLOD_PRECISE float toTileX = 0.5f * frame.depthMap.z / frame.occlusion.z;
+    HEXLOD_PRECISE float toTileY = 0.5f * frame.depthMap.w / frame.occlusion.z;
+    HEXLOD_PRECISE float tileX0 = floor((ndcX0 + 1.0f) * toTileX), tileX1 = floor((ndcX1 + 1.0f) * toTileX);
+    HEXLOD_PRECISE float tileY0 = floor((ndcY0 + 1.0f) * toTileY), tileY1 = floor((ndcY1 + 1.0f) * toTileY);
+    float lastX = frame.occlusion.x - 1.0f, lastY = frame.occlusion.y - 1.0f;
+    // Off the screen on one side: the frustum test keeps only spheres that reach it, so
+    // clamping keeps the tiles it does cover.
+    tileX0 = tileX0 < 0.0f ? 0.0f : (tileX0 > lastX ? lastX : tileX0);
+    tileX1 = tileX1 < 0.0f ? 0.0f : (tileX1 > lastX ? lastX : tileX1);
+    tileY0 = tileY0 < 0.0f ? 0.0f : (tileY0 > lastY ? lastY : tileY0);
+    tileY1 = tileY1 < 0.0f ? 0.0f : (tileY1 > lastY ? lastY : tileY1);
+    if (!(tileX1 >= tileX0 && tileY1 >= tileY0)) return false; // not a number on the way
+    if ((tileX1 - tileX0 + 1.0f) * (tileY1 - tileY0 + 1.0f) > float(maxTiles)) return false;
+    tiles = uvec4(uint(tileX0), uint(tileY0), uint(tileX1), uint(tileY1));
+    nearestDepth = frame.depthMap.x / nearZ - frame.depthMap.y;
+    return true;
 }
 
 #ifdef __cplusplus

@@ -1,8 +1,10 @@
 // The farthest depth of each kDepthTileSize-pixel square tile of the frame's depth target,
-// built by one compute pass (depth_tiles.comp) from what the frame has drawn so far. A later
-// pass whose fragments write their own depth (LOD3 impostors, tree billboards), and so cannot
-// be rejected before shading, tests each rectangle against it in its vertex shader instead and
-// drops the hidden ones whole (depth_tiles.glsl), counting them per pass.
+// built by one compute pass (depth_tiles.comp) from what the frame has drawn so far. The cull
+// pass tests every terminal against the tiles of the opaque base volumes and ground (a
+// one-level hierarchical Z; occlusionRect in cull_shared.h). A later pass whose fragments
+// write their own depth (LOD3 impostors, tree billboards), and so cannot be rejected before
+// shading, tests each rectangle against them in its vertex shader and drops the hidden ones
+// whole (depth_tiles.glsl), counting them per pass.
 #pragma once
 
 #include "hexlod/render/shader_program.h"
@@ -11,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace hexlod::lod {
 
@@ -38,6 +41,12 @@ public:
     void bind(const render::ShaderProgram& program, uint32_t unit, TileTest test, bool enabled) const;
     // Rectangles each test dropped since clearCounts(), by TileTest. Waits for the GL.
     std::array<uint32_t, size_t(TileTest::Count)> dropped() const;
+    // The tiles as built last, row by row from the bottom (waits for the GL): the cull pass's
+    // occlusion test reads the texture, its CPU side this copy.
+    std::vector<float> read() const;
+    uint32_t texture() const { return texture_; }
+    uint32_t columns() const { return columns_; }
+    uint32_t rows() const { return rows_; }
     bool valid() const { return counts_ != 0; }
     uint64_t byteSize() const { return uint64_t(columns_) * rows_ * sizeof(float); }
 

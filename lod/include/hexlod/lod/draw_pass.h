@@ -9,7 +9,7 @@
 
 namespace hexlod::lod {
 
-enum class DrawPass : uint8_t { TerminalMeshes, Lod0, Lod1, Ground, Impostors, Trees, Count };
+enum class DrawPass : uint8_t { Lod0, Lod1, Ground, TerminalMeshes, Impostors, Trees, Count };
 const char* drawPassName(DrawPass pass); // "terminal_meshes", "impostors", "lod0", ...
 
 using PassTimes = std::array<double, size_t(DrawPass::Count)>; // milliseconds per pass
@@ -20,6 +20,9 @@ class PassTimer {
 public:
     PassTimer(bool enabled, PassTimes& times);
     void end(DrawPass pass);
+    // The next pass starts now: what ran since the last end() (the cull pass, between the
+    // occluders and the rest) belongs to no pass.
+    void restart();
 
 private:
     bool enabled_;

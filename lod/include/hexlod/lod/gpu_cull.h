@@ -1,7 +1,7 @@
 // The GPU cull and LOD pass (thesis §7.5.3): terminal_cull.comp over every terminal of the
-// resident batches in view, then cull_finalize.comp turning its counters into indirect draw
-// commands. Needs a current GL context. Its buffers grow when a frame needs more and are
-// otherwise reused frame after frame.
+// resident batches in view (but pages wholly outside the frustum, skipped on the CPU), then
+// cull_finalize.comp turning its counters into indirect draw commands. Needs a current GL context. Its
+// buffers grow when a frame needs more and are otherwise reused frame after frame.
 #pragma once
 
 #include "hexlod/lod/cull_inputs.h"
@@ -39,6 +39,12 @@ public:
     void run(const CullInputs& inputs, uint32_t arena, std::span<const MeshDrawInfo> meshes);
 
     const DrawListLayout& layout() const { return layout_; }
+    // The last run's terminals culled one by one, and those skipped with their page (of
+    // which `occludedTerminals` behind the occlusion tiles).
+    struct PageStats {
+        uint64_t terminals = 0, skippedTerminals = 0, occludedTerminals = 0;
+    };
+    PageStats pageStats() const { return stats_; }
     uint32_t shapeCount() const { return shapeCount_; }
     uint32_t listBuffer() const { return buffers_[kLists].id; }
     uint32_t frameBuffer() const { return buffers_[kFrame].id; } // the CullFrame uniform block
@@ -47,6 +53,8 @@ public:
 
     // Per shape: LOD4, impostor, LOD3, LOD2 entries (waits for the pass).
     std::vector<glm::uvec4> readCounters() const;
+    // Terminals the occlusion test culled one by one (waits for the pass).
+    uint32_t readOccluded() const;
     // The draw lists as written (tests; waits for the pass).
     std::vector<gpu::GpuTerminal> readLists() const;
 
@@ -60,6 +68,7 @@ private:
         kLists,
         kMeshes,
         kCommands,
+        kOccluded,
         kBufferCount
     };
     struct Buffer {
@@ -72,6 +81,7 @@ private:
     render::ShaderProgram cull_, finalize_;
     Buffer buffers_[kBufferCount];
     DrawListLayout layout_;
+    PageStats stats_;
     uint32_t shapeCount_ = 0;
 };
 

@@ -8,6 +8,8 @@
 
 #include "hexlod/grammar/terminal_set.h"
 
+#include <glm/vec4.hpp>
+
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -29,6 +31,12 @@ struct ArenaStats {
     uint32_t rejected = 0;      // since the last beginFrame(): batches that did not fit
 };
 
+// A batch resident in the arena.
+struct ArenaBatch {
+    std::vector<uint32_t> pages;    // first record of each page
+    std::vector<glm::vec4> spheres; // each page's bounds (pageSpheres), for culling it whole
+};
+
 class TerminalArena {
 public:
     TerminalArena() = default;
@@ -44,11 +52,11 @@ public:
 
     void beginFrame(uint64_t frame);
     // The pages holding `key`'s set (its records in order, kArenaPageRecords per page, the
-    // last page partly filled), uploading it if it is not resident. To make room it evicts
-    // batches not used in the current frame, oldest use first; null when even that is not
-    // enough (the frame then draws the batch at a coarser LOD). The pointer is valid until the
-    // next acquire().
-    const std::vector<uint32_t>* acquire(uint64_t key, const grammar::TerminalSet& set);
+    // last page partly filled) and their bounds, uploading it if it is not resident. To make
+    // room it evicts batches not used in the current frame, oldest use first; null when even
+    // that is not enough (the frame then draws the batch at a coarser LOD). The pointer stays
+    // valid until the batch is evicted, which no acquire() of the same frame does.
+    const ArenaBatch* acquire(uint64_t key, const grammar::TerminalSet& set);
     bool resident(uint64_t key) const { return slots_.count(key) != 0; }
 
     uint32_t buffer() const { return buffer_; }
@@ -59,7 +67,7 @@ public:
 
 private:
     struct Slot {
-        std::vector<uint32_t> pages; // first record of each page
+        ArenaBatch batch;
         uint64_t records = 0;
         uint64_t lastUsed = 0;
     };
