@@ -38,13 +38,16 @@ void VolumeCache::beginFrame(uint64_t frame) {
 }
 
 void VolumeCache::evict() {
+    // What the previous frame drew stays even over budget: the next frame most likely draws it
+    // again, and a view that needs more than the budget (the thesis city's overview draws
+    // 360 MB of volumes) would otherwise rebuild the same meshes frame after frame.
     while (stats_.residentBytes > budget_) {
         auto oldest = meshes_.end();
         for (auto it = meshes_.begin(); it != meshes_.end(); ++it) {
-            if (it->second.lastUsed >= frame_) continue;
+            if (it->second.lastUsed + 1 >= frame_) continue;
             if (oldest == meshes_.end() || it->second.lastUsed < oldest->second.lastUsed) oldest = it;
         }
-        if (oldest == meshes_.end()) return; // all in use this frame
+        if (oldest == meshes_.end()) return; // all drawn by the previous frame
         stats_.residentBytes -= oldest->second.bytes;
         release(oldest->second);
         meshes_.erase(oldest);

@@ -1,6 +1,7 @@
 // Base volumes on the GPU (LOD0, and the shells under LOD2-4 terminals): per batch, the
 // extruded set's buildings as one mesh in cell-local metres, built on first use and kept
-// within a byte budget, least recently drawn first out.
+// within a byte budget, least recently drawn first out; the meshes of the last frame stay
+// whatever the budget.
 #pragma once
 
 #include "hexlod/cells/batch_catalog.h"
