@@ -1,6 +1,8 @@
 #version 450 core
 // Ray-casts a tree's species impostor (full sphere of views, tree space = world axes at the
-// trunk's base), with the same four-view reconstruction as LOD3.
+// trunk's base), with the same four-view reconstruction as LOD3, or from the nearest view
+// alone without parallax beyond LOD2's distance, where a tree is a few pixels and the blend
+// would cost four times the texture reads for what no pixel resolves.
 #include "frame.glsl"
 
 uniform sampler2DArray impostorAlbedo, impostorNormalDepth;
@@ -14,6 +16,7 @@ layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; };
 in vec3 vPosition;
 flat in vec3 vBase;
 flat in uint vSpecies;
+flat in uint vOneView;
 uniform uint alphaToCoverage;
 layout(location = 0) out vec4 colour;
 
@@ -25,8 +28,10 @@ void main() {
     uvec4 views;
     vec4 weights;
     impostorViews(forward, views, weights);
+    if (vOneView != 0u) weights = vec4(1.0, 0.0, 0.0, 0.0); // the lookup puts the nearest first
     vec4 normalDepth;
-    vec4 albedo = impostorReconstruct(vSpecies, rayOrigin, forward, views, weights, 1u, normalDepth);
+    vec4 albedo =
+        impostorReconstruct(vSpecies, rayOrigin, forward, views, weights, vOneView != 0u ? 0u : 1u, normalDepth);
     // With multisampling, coverage becomes the sample mask (alpha to coverage); else a cutout.
     if (albedo.a < (alphaToCoverage != 0u ? 0.02 : 0.5)) discard;
     vec3 world = vBase + sphere.xyz + sphere.w * (rayOrigin + normalDepth.w * forward);

@@ -1,6 +1,7 @@
 #version 450 core
 // One billboard per tree that the frame's tree cut (treeIsBillboard, shared with the cull pass)
 // leaves to its species impostor: a camera-facing square over the impostor's bounding sphere,
+// blending four views (as LOD3) or, beyond LOD2's distance, showing the nearest (as LOD2),
 // dropped whole when what the frame drew before hides it (depth_tiles.glsl): the fragment
 // shader writes its depth, so the GL cannot reject hidden fragments before shading them.
 #include "gpu_types.h"
@@ -20,6 +21,7 @@ uniform uint allBillboards;
 out vec3 vPosition;
 flat out vec3 vBase;
 flat out uint vSpecies;
+flat out uint vOneView; // beyond LOD2's distance: the nearest view alone, as LOD2 draws facades
 
 void main() {
     vec4 tree = billboardTrees[pulledRecord()];
@@ -31,6 +33,7 @@ void main() {
     vec4 sphere = spheres[vSpecies];
     vBase = tree.xyz + cull.trees.yzw;
     vec3 centre = vBase + sphere.xyz;
+    vOneView = uint(dot(centre, centre) >= cull.lodDistance.y);
     vec3 toCamera = -normalize(centre);
     vec3 up = abs(toCamera.z) > 0.999 ? vec3(0, 1, 0) : vec3(0, 0, 1);
     vec3 right = normalize(cross(up, toCamera));
