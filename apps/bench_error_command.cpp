@@ -71,6 +71,8 @@ void registerBenchErrorCommand(CLI::App& bench, BenchErrorOptions& o, CLI::App*&
     cmd->add_option("--sse", o.sse, "maxScreenSpaceError values of the sweep, in pixels")->delimiter(',');
     cmd->add_flag("!--no-forced", o.forced, "Leave out the forced LOD3, LOD2, LOD1 and LOD0 renders");
     cmd->add_flag("--json", o.json, "Print one JSON entry per setting");
+    cmd->add_flag("--keep-hidden", o.keepHidden,
+                  "Every setting, the reference too, draws what the occluders hide instead of culling it");
     cmd->add_option(
         "--reference-supersample", o.referenceSupersample,
         "Measure errors against all-LOD4 rendered at N times the size and filtered down (1 to 4)");
@@ -138,6 +140,7 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
         options.lod.maxScreenSpaceError = sse;
         options.schedulerWorkers = 0;
         options.samples = o.render.samples;
+        options.dropHidden = !o.keepHidden;
         return options;
     };
     // What errors are measured against: the reference's own frames, or with

@@ -23,6 +23,7 @@ struct BenchErrorOptions {
     // Above 1: errors are measured against the all-LOD4 render at this many times the width
     // and height, box-filtered down (the timed reference stays at the target size).
     uint32_t referenceSupersample = 1;
+    bool keepHidden = false; // every setting draws what the occluders hide (CityRendererOptions::dropHidden)
     RenderOptions render;
 };
 

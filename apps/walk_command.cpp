@@ -27,6 +27,8 @@ CLI::App* registerWalkCommand(CLI::App& app, WalkOptions& o) {
     cmd->add_flag("--json", o.json, "Print the summary as one JSON object");
     cmd->add_flag("--time-passes", o.timePasses,
                   "Finish and time every draw pass (pass_ms); slows the frame a little");
+    cmd->add_flag("--keep-hidden", o.keepHidden,
+                  "Draw what the occluders hide instead of culling it, to measure what culling saves");
     addRenderOptions(*cmd, o.render);
     return cmd;
 }
@@ -76,6 +78,7 @@ int runWalkCommand(const WalkOptions& o) {
     options.schedulerWorkers = o.render.workers;
     options.samples = o.render.samples;
     options.timePasses = o.timePasses;
+    options.dropHidden = !o.keepHidden;
     lod::CityRenderer renderer(*session.catalog, *session.cache, *session.meshes, &session.impostors,
                                options);
     if (!renderer.init(error)) {

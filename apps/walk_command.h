@@ -16,6 +16,7 @@ struct WalkOptions {
     uint32_t frames = 60;
     bool reference = false, png = false, json = false;
     bool timePasses = false; // --time-passes
+    bool keepHidden = false; // --keep-hidden
     RenderOptions render;
 };
 

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace hexlod::test {
 namespace {
@@ -77,6 +78,41 @@ TEST(RenderCli, WalkTimesEveryDrawPassWhenAsked) {
     ASSERT_EQ(untimed.exitCode, 0) << untimed.err;
     for (const auto& [pass, ms] : Json::parse(untimed.out)["median_pass_ms"].items())
         EXPECT_EQ(ms, 0.0) << pass;
+}
+
+// Culling what the occluders hide changes no pixel: --keep-hidden draws it all, and reports
+// nothing dropped.
+TEST(RenderCli, WalkKeepsHiddenWorkWhenAskedAndDrawsTheSameFrames) {
+    const std::string dir = folder("hidden");
+    // At street level, across the blocks: the nearest buildings hide the others' facades.
+    const Json keyframes = {{{"time", 0}, {"position", {-70, -3, 2}}, {"target", {0, 0, 3}}},
+                            {{"time", 2}, {"position", {-70, 8, 2}}, {"target", {0, 0, 3}}}};
+    std::ofstream(dir + "/street.json") << Json{
+        {"name", "street"},      {"relative_to", "scene_centre"},
+        {"viewport", {96, 64}},  {"fov_y_degrees", 60},
+        {"near", 0.3},           {"far", 5000},
+        {"keyframes", keyframes}}.dump();
+    const std::string walk = "walk --scene " + kScene + " --path " + dir +
+                             "/street.json --frames 2 --impostor-grid 2 --png --json --out " + dir;
+    const CommandResult culled = runHexlod(walk + "/culled");
+    ASSERT_EQ(culled.exitCode, 0) << culled.err;
+    const CommandResult kept = runHexlod(walk + "/kept --keep-hidden");
+    ASSERT_EQ(kept.exitCode, 0) << kept.err;
+    uint64_t hidden = 0;
+    for (const Json& frame : Json::parse(std::ifstream(dir + "/culled/frames.json")))
+        hidden += frame["cull_occluded_terminals"].get<uint64_t>();
+    EXPECT_GT(hidden, 0u); // else the comparison below would prove nothing
+    const Json frames = Json::parse(std::ifstream(dir + "/kept/frames.json"));
+    ASSERT_EQ(frames.size(), 2u);
+    for (const Json& frame : frames)
+        for (const char* key : {"cull_occluded_terminals", "tree_billboards_occluded", "lod3_occluded"})
+            EXPECT_EQ(frame[key], 0) << key;
+    const auto bytes = [](const std::string& file) {
+        std::ifstream in(file, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    for (const char* frame : {"frame_00000.png", "frame_00001.png"})
+        EXPECT_EQ(bytes(dir + "/kept/" + frame), bytes(dir + "/culled/" + frame)) << frame;
 }
 
 TEST(RenderCli, AZeroLengthPathRendersItsFrames) {
