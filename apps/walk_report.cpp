@@ -61,6 +61,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"cache_lookups", f.cacheLookups},
         {"cache_hits", f.cacheHits},
         {"tree_billboards", f.treeBillboards},
+        {"tree_points", f.treePoints},
         {"tree_billboards_occluded", f.treeBillboardsOccluded},
         {"lod3_occluded", f.lod3Occluded},
         {"cache_bytes", f.cacheBytes},

@@ -1,7 +1,8 @@
 #version 450 core
 // One billboard per tree that the frame's tree cut (treeIsBillboard, shared with the cull pass)
 // leaves to its species impostor: a camera-facing square over the impostor's bounding sphere,
-// blending four views (as LOD3) or, beyond LOD2's distance, showing the nearest (as LOD2),
+// blending four views (as LOD3) or, beyond LOD2's distance, showing the nearest (as LOD2);
+// smaller on screen than tree_size.glsl's limit, a point instead (tree_point.vert). It is
 // dropped whole when what the frame drew before hides it (depth_tiles.glsl): the fragment
 // shader writes its depth, so the GL cannot reject hidden fragments before shading them.
 #include "gpu_types.h"
@@ -13,6 +14,7 @@ layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; }; //
 
 #include "pulled_quad.glsl"
 #include "depth_tiles.glsl"
+#include "tree_size.glsl"
 
 // Per tree batch, its trees in a row: position relative to the trees' origin, species (-1: none).
 layout(std430, binding = 13) readonly buffer BillboardBuffer { vec4 billboardTrees[]; };
@@ -33,6 +35,10 @@ void main() {
     vec4 sphere = spheres[vSpecies];
     vBase = tree.xyz + cull.trees.yzw;
     vec3 centre = vBase + sphere.xyz;
+    if (treeIsPoint(centre, sphere.w)) { // the point pass draws it
+        gl_Position = kNoVertex;
+        return;
+    }
     vOneView = uint(dot(centre, centre) >= cull.lodDistance.y);
     vec3 toCamera = -normalize(centre);
     vec3 up = abs(toCamera.z) > 0.999 ? vec3(0, 1, 0) : vec3(0, 0, 1);

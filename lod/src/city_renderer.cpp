@@ -431,20 +431,23 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     drawTerminalMeshes(stats, timer);
     drawImpostors(glm::mat4(glm::inverse(glm::dmat4(uniforms.viewProjection))), stats, timer);
     if (trees_.hasImpostors() && !billboards.empty()) {
+        TreeFrame trees;
+        trees.cull = &inputs.frame;
+        trees.occlusionTiles = inputs.occlusionTiles;
+        trees.screenScale = float(0.5 * options_.height / std::tan(0.5 * pose.fovY));
+        trees.pointDiameter = float(options_.treePointsUnderSse * options_.lod.maxScreenSpaceError);
+        const auto [submitted, points] = trees_.prepare(billboards, trees);
+        stats.treeBillboards = submitted;
+        stats.treePoints = points;
         gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
         depthTiles_.build(target_.depthTexture());
-        trees_.begin(trees_.program());
         depthTiles_.bind(trees_.program(), kDepthTilesUnit, TileTest::TreeBillboards, options_.dropHidden);
         trees_.program().set("alphaToCoverage", uint32_t(options_.samples > 1));
         if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-        for (const auto& [batch, all] : billboards) {
-            const uint32_t drawn = trees_.draw(batch, all, inputs.frame, inputs.occlusionTiles);
-            stats.treeBillboards += drawn;
-            stats.triangles += 2ull * drawn;
-            stats.draws += drawn > 0;
-        }
+        stats.draws += trees_.drawBillboards(trees);
         gl::glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-        gl::glBindVertexArray(0);
+        stats.draws += trees_.drawPoints(trees);
+        stats.triangles += 2ull * submitted;
     }
     timer.end(DrawPass::Trees);
     stats.drawMs += millisecondsSince(stageStart);

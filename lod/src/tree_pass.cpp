@@ -2,6 +2,7 @@
 #include "hexlod/lod/cull_inputs.h"
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/lod/page_bounds.h"
+#include "hexlod/lod/tree_view_averages.h"
 #include "hexlod/render/gl_api.h"
 
 #include <glm/geometric.hpp>
@@ -44,7 +45,7 @@ glm::vec4 enclose(const std::vector<glm::vec3>& centres, const std::vector<float
 } // namespace
 
 TreePass::~TreePass() {
-    for (uint32_t buffer : {byId_, instances_, spheres_})
+    for (uint32_t buffer : {byId_, instances_, spheres_, viewAverages_})
         if (buffer) gl::glDeleteBuffers(1, &buffer);
     if (vao_) gl::glDeleteVertexArrays(1, &vao_);
 }
@@ -116,7 +117,13 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
     impostor::ViewLookup lookup(layout);
     if (!textures_.upload(layout, atlases, lookup.buildTable(64), error)) return false;
     upload(spheres_, spheres);
-    bytes_ += spheres.size() * sizeof(glm::vec4) + textures_.byteSize();
+    std::vector<glm::vec4> averages;
+    for (const impostor::ImpostorAtlas& atlas : impostors->species) {
+        const std::vector<glm::vec4> species = treeViewAverages(atlas);
+        averages.insert(averages.end(), species.begin(), species.end());
+    }
+    upload(viewAverages_, averages);
+    bytes_ += (spheres.size() + averages.size()) * sizeof(glm::vec4) + textures_.byteSize();
     buildChunks(instances, spheres);
     render::ShaderLibrary library = lodShaderLibrary();
     program_ = render::ShaderProgram::build(library,
@@ -124,17 +131,14 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
                                              {render::ShaderStage::Fragment, "tree_billboard.frag"}},
                                             "", error);
     if (!program_.valid()) return false;
-    // The shader pulls its trees from the buffer; the core profile still wants a vertex array.
+    pointProgram_ = render::ShaderProgram::build(library,
+                                                 {{render::ShaderStage::Vertex, "tree_point.vert"},
+                                                  {render::ShaderStage::Fragment, "tree_point.frag"}},
+                                                 "", error);
+    if (!pointProgram_.valid()) return false;
+    // The shaders pull their trees from the buffer; the core profile still wants a vertex array.
     gl::glCreateVertexArrays(1, &vao_);
     return true;
-}
-
-void TreePass::begin(const render::ShaderProgram& program) const {
-    program.use();
-    textures_.bind(program, 0);
-    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spheres_);
-    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, instances_);
-    gl::glBindVertexArray(vao_);
 }
 
 void TreePass::buildChunks(const std::vector<glm::vec4>& instances,
@@ -161,6 +165,8 @@ void TreePass::buildChunks(const std::vector<glm::vec4>& instances,
             zero.assign(roots.size(), 0.0f);
             chunk.sphere = enclose(centres, radii);
             chunk.roots = enclose(roots, zero);
+            chunk.minRadius = *std::min_element(radii.begin(), radii.end());
+            chunk.maxRadius = *std::max_element(radii.begin(), radii.end());
             chunks_.push_back(chunk);
         }
         chunkRanges_[b].second = uint32_t(chunks_.size()) - chunkRanges_[b].first;
@@ -168,37 +174,84 @@ void TreePass::buildChunks(const std::vector<glm::vec4>& instances,
     bytes_ += chunks_.size() * sizeof(Chunk);
 }
 
-uint32_t TreePass::draw(uint32_t batch, bool allBillboards, const shared::CullFrame& frame,
-                        const std::vector<float>* occlusionTiles) {
-    if (!vao_) return 0;
-    // frame.trees: x, the squared distance from which a tree is a billboard (< 0: never);
-    // yzw, the trees' origin minus the camera.
-    const float cut = frame.trees.x;
-    if (!allBillboards && cut < 0.0f) return 0;
-    const glm::vec3 offset(frame.trees.y, frame.trees.z, frame.trees.w);
-    firsts_.clear(), counts_.clear();
-    uint32_t submitted = 0;
-    const auto [firstChunk, chunkCount] = chunkRanges_.at(batch);
-    for (uint32_t c = firstChunk; c < firstChunk + chunkCount; ++c) {
-        const Chunk& chunk = chunks_[c];
-        // Every root nearer than the cut: every tree is geometry, drawn by the terminal passes.
-        const float farthestRoot = glm::length(glm::vec3(chunk.roots) + offset) + chunk.roots.w;
-        if (!allBillboards && farthestRoot * farthestRoot < cut) continue;
-        if (!pageMayBeVisible(chunk.sphere, offset, frame)) continue;
-        if (tilesHideSphere(frame, occlusionTiles,
-                            glm::vec4(glm::vec3(chunk.sphere) + offset, chunk.sphere.w), kChunkMaxTiles))
-            continue;
-        // Chunks follow each other in the buffer: adjacent ones make one range.
-        if (!counts_.empty() && firsts_.back() + counts_.back() == int32_t(6 * chunk.first))
-            counts_.back() += int32_t(6 * chunk.count);
-        else
-            firsts_.push_back(int32_t(6 * chunk.first)), counts_.push_back(int32_t(6 * chunk.count));
-        submitted += chunk.count;
+void TreePass::Ranges::add(uint32_t first, uint32_t count) {
+    // Chunks follow each other in the buffer: adjacent ones make one range.
+    if (!counts.empty() && firsts.back() + counts.back() == int32_t(first))
+        counts.back() += int32_t(count);
+    else
+        firsts.push_back(int32_t(first)), counts.push_back(int32_t(count));
+}
+
+std::pair<uint32_t, uint32_t> TreePass::prepare(const std::vector<std::pair<uint32_t, bool>>& batches,
+                                                const TreeFrame& frame) {
+    for (Ranges* ranges : {billboardRanges_, pointRanges_}) ranges[0].clear(), ranges[1].clear();
+    if (!vao_) return {0, 0};
+    const shared::CullFrame& cull = *frame.cull;
+    // cull.trees: x, the squared distance from which a tree is far (< 0: never); yzw, the
+    // trees' origin minus the camera.
+    const float cut = cull.trees.x;
+    const glm::vec3 offset(cull.trees.y, cull.trees.z, cull.trees.w);
+    uint32_t billboards = 0, points = 0;
+    for (const auto& [batch, allFar] : batches) {
+        if (!allFar && cut < 0.0f) continue;
+        const auto [firstChunk, chunkCount] = chunkRanges_.at(batch);
+        for (uint32_t c = firstChunk; c < firstChunk + chunkCount; ++c) {
+            const Chunk& chunk = chunks_[c];
+            // Every root nearer than the cut: every tree is geometry, drawn by the terminal passes.
+            const float farthestRoot = glm::length(glm::vec3(chunk.roots) + offset) + chunk.roots.w;
+            if (!allFar && farthestRoot * farthestRoot < cut) continue;
+            if (!pageMayBeVisible(chunk.sphere, offset, cull)) continue;
+            const glm::vec3 centre = glm::vec3(chunk.sphere) + offset;
+            if (tilesHideSphere(cull, frame.occlusionTiles, glm::vec4(centre, chunk.sphere.w),
+                                kChunkMaxTiles))
+                continue;
+            // tree_size.glsl per tree; here with a margin, so that a chunk left to one form
+            // holds no tree of the other.
+            const float nearest = std::max(glm::length(centre) - chunk.sphere.w, 0.0f);
+            const float farthest = glm::length(centre) + chunk.sphere.w;
+            const bool anyBillboard =
+                2.0f * chunk.maxRadius * frame.screenScale >= 0.99f * frame.pointDiameter * nearest;
+            const bool anyPoint =
+                2.0f * chunk.minRadius * frame.screenScale < 1.01f * frame.pointDiameter * farthest;
+            if (anyBillboard)
+                billboardRanges_[allFar].add(6 * chunk.first, 6 * chunk.count), billboards += chunk.count;
+            if (anyPoint) pointRanges_[allFar].add(chunk.first, chunk.count), points += chunk.count;
+        }
     }
-    if (submitted == 0) return 0;
-    program_.set("allBillboards", uint32_t(allBillboards));
-    gl::glMultiDrawArrays(GL_TRIANGLES, firsts_.data(), counts_.data(), GLsizei(counts_.size()));
-    return submitted;
+    return {billboards, points};
+}
+
+uint32_t TreePass::drawRanges(const render::ShaderProgram& program, const TreeFrame& frame,
+                              const Ranges (&ranges)[2], bool points) {
+    if (ranges[0].counts.empty() && ranges[1].counts.empty()) return 0;
+    program.use();
+    textures_.bind(program, 0);
+    program.set("treeScreenScale", frame.screenScale);
+    program.set("treePointDiameter", frame.pointDiameter);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spheres_);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, instances_);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, viewAverages_);
+    gl::glBindVertexArray(vao_);
+    if (points) gl::glEnable(GL_PROGRAM_POINT_SIZE);
+    uint32_t draws = 0;
+    for (uint32_t allFar = 0; allFar < 2; ++allFar) {
+        if (ranges[allFar].counts.empty()) continue;
+        program.set("allBillboards", allFar);
+        gl::glMultiDrawArrays(points ? GL_POINTS : GL_TRIANGLES, ranges[allFar].firsts.data(),
+                              ranges[allFar].counts.data(), GLsizei(ranges[allFar].counts.size()));
+        ++draws;
+    }
+    if (points) gl::glDisable(GL_PROGRAM_POINT_SIZE);
+    gl::glBindVertexArray(0);
+    return draws;
+}
+
+uint32_t TreePass::drawBillboards(const TreeFrame& frame) {
+    return drawRanges(program_, frame, billboardRanges_, false);
+}
+
+uint32_t TreePass::drawPoints(const TreeFrame& frame) {
+    return drawRanges(pointProgram_, frame, pointRanges_, true);
 }
 
 } // namespace hexlod::lod

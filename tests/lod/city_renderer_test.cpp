@@ -1,6 +1,7 @@
 // The whole frame on llvmpipe: every mode renders a small city, the LOD system costs less than
 // everything at LOD4 and stays close to it, multisampling antialiases, tree billboards cover
-// what their trees cover with and without it, the profile's tree error places the cut, hidden
+// what their trees cover with and without it, trees a pixel across are points that cover as
+// much, the profile's tree error places the cut, hidden
 // billboards and LOD3 impostors are dropped without changing a pixel, a city 1e7 m out renders
 // as at the origin, odd cameras render without error, and golden images hold each mode's look.
 #include "../render/gl_fixture.h"
@@ -42,9 +43,11 @@ protected:
 
     Rendered render(testing::TestCity& city, const SceneImpostors& impostors, RenderMode mode,
                     const scene::CameraPose& pose, uint32_t frames = 1, uint32_t samples = 1,
-                    bool dropHidden = true, const scene::LodProfile& lod = {}) {
+                    bool dropHidden = true, const scene::LodProfile& lod = {},
+                    double treePointsUnderSse = 2.0) {
         CityRendererOptions options;
         options.lod = lod;
+        options.treePointsUnderSse = treePointsUnderSse;
         options.dropHidden = dropHidden;
         options.width = kWidth;
         options.height = kHeight;
@@ -163,6 +166,24 @@ TEST_F(CityRendererTest, MultisampledTreeBillboardsCoverWhatTheirTreesCover) {
         std::printf("%u samples: billboards against tree geometry %.2f dB\n", samples, psnr[pass]);
     }
     EXPECT_GT(psnr[1], psnr[0] - 2.0) << "multisampled billboards cover more than their trees";
+}
+
+TEST_F(CityRendererTest, TreesAPixelOrTwoAcrossArePointsThatCoverWhatTheirBillboardsCover) {
+    // Trees only, from 300 m: each about three pixels across, under the point size (2 x 2 px).
+    testing::TestCity city = testing::makeCity(0, 120);
+    const SceneImpostors impostors = bake(city);
+    const scene::CameraPose pose = lookAt({-200, -220, 40}, {0, 0, 0});
+    Rendered trees = render(city, impostors, RenderMode::AllLod4, pose, 1, 4);
+    Rendered points = render(city, impostors, RenderMode::Lod, pose, 1, 4);
+    Rendered billboards = render(city, impostors, RenderMode::Lod, pose, 1, 4, true, {}, 0.0);
+    EXPECT_GT(points.stats.treePoints, 0u);
+    EXPECT_EQ(billboards.stats.treePoints, 0u);
+    EXPECT_GT(billboards.stats.treeBillboards, 0u);
+    EXPECT_NE(points.image.pixels, billboards.image.pixels);
+    const double pointError = render::compareImages(points.image, trees.image).psnr,
+                 billboardError = render::compareImages(billboards.image, trees.image).psnr;
+    std::printf("against tree geometry: points %.2f dB, billboards %.2f dB\n", pointError, billboardError);
+    EXPECT_GT(pointError, billboardError - 1.0);
 }
 
 TEST_F(CityRendererTest, TheProfilesTreeErrorPlacesTheCutBetweenTreesAndBillboards) {

@@ -61,6 +61,10 @@ struct CityRendererOptions {
     // Culls terminals, and drops LOD3 impostors and tree billboards whole, that the depth drawn
     // before them hides (DepthTiles). Off only to check that it changes no pixel.
     bool dropHidden = true;
+    // A far tree is a point (tree_point.vert) when its sphere's diameter on screen is under this
+    // many times the profile's maxScreenSpaceError: its billboard would show no detail the bound
+    // admits. 0: never.
+    double treePointsUnderSse = 2.0;
 };
 
 struct FrameStats {
@@ -83,6 +87,7 @@ struct FrameStats {
     uint64_t cullOccludedTerminals = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
+    uint32_t treePoints = 0;                  // far trees submitted to the point pass
     uint32_t treeBillboardsOccluded = 0;      // of those, dropped whole as hidden (DepthTiles)
     uint32_t lod3Occluded = 0;                // LOD3 and LOD3-LOD2 entries dropped as hidden
     uint64_t cacheLookups = 0, cacheHits = 0; // this frame's
