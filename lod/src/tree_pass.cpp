@@ -89,11 +89,13 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
         // Neighbours next to each other, so that a chunk is a patch of the cell.
         glm::vec2 lo(std::numeric_limits<float>::max());
         for (size_t i = first; i < instances.size(); ++i) lo = glm::min(lo, glm::vec2(instances[i]));
+        const auto key = [&](const glm::vec4& tree) {
+            // Metres from the batch's corner; anything not a number sorts first.
+            const auto grid = [](float v) { return v > 0.0f ? uint32_t(std::min(v, 65535.0f)) : 0u; };
+            return morton(grid(tree.x - lo.x), grid(tree.y - lo.y));
+        };
         std::sort(instances.begin() + std::ptrdiff_t(first), instances.end(),
-                  [&](const auto& a, const auto& c) {
-                      const glm::uvec2 ka = glm::uvec2(glm::vec2(a) - lo), kc = glm::uvec2(glm::vec2(c) - lo);
-                      return morton(ka.x, ka.y) < morton(kc.x, kc.y);
-                  });
+                  [&](const auto& a, const auto& c) { return key(a) < key(c); });
     }
     // Without trees each buffer holds one unused element, since the cull pass binds the tree
     // buffer whatever the scene and GL has no empty buffer storage; they count as nothing.
