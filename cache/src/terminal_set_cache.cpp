@@ -57,6 +57,11 @@ TerminalSetCache::SetPtr TerminalSetCache::find(const BatchKey& key) {
     return nullptr;
 }
 
+TerminalSetCache::SetPtr TerminalSetCache::findInMemory(const BatchKey& key) {
+    std::lock_guard lock(mutex_);
+    return findInMemoryLocked(key);
+}
+
 void TerminalSetCache::insert(const BatchKey& key, grammar::TerminalSet set) {
     const SetPtr shared = std::make_shared<const grammar::TerminalSet>(std::move(set));
     {

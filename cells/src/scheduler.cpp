@@ -84,7 +84,10 @@ bool Scheduler::wantsTrees(double distance, const Camera& camera) const {
 }
 
 bool Scheduler::requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue) {
-    if (cache_.find(catalog_.key(batch))) return true;
+    // With workers a set evicted to disk is read back by a worker, like one generated, so the
+    // frame never waits for the disk; without, the frame reads it itself.
+    const cache::BatchKey& key = catalog_.key(batch);
+    if (options_.workers > 0 ? bool(cache_.findInMemory(key)) : bool(cache_.find(key))) return true;
     queue.push_back({batch, sse, prefetch});
     return false;
 }

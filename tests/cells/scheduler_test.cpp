@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <set>
 
@@ -279,6 +280,35 @@ TEST_F(SchedulerTest, WorkersGenerateInTheBackgroundWithoutBlockingUpdate) {
     for (int frame = 2; frame < 200 && scheduler.update(camera, frame * 0.1).requestedBatches > 0; ++frame)
         scheduler.drain();
     EXPECT_EQ(scheduler.update(camera, 100.0).requestedBatches, 0u);
+}
+
+TEST_F(SchedulerTest, WithWorkersTheFrameLeavesDiskReadsToThem) {
+    const std::filesystem::path folder =
+        std::filesystem::path(::testing::TempDir()) / "hexlod-scheduler-disk";
+    std::filesystem::remove_all(folder);
+    // Memory keeps nothing unpinned: every set lives on disk once written.
+    cache::TerminalSetCache disk(
+        {.memoryBudgetBytes = 0, .diskBudgetBytes = uint64_t(1) << 30, .diskPath = folder.string()});
+    const Camera camera = southOf(middleCell(), 0.0);
+    {
+        Scheduler generating(catalog_, disk, options(0));
+        generating.update(camera, 0.0);
+    }
+    disk.flushDisk();
+    const cache::CacheStats written = disk.stats();
+    ASSERT_GT(written.diskFiles, 0u);
+
+    // The update reads no file: every batch on disk is requested, not ready, and a worker reads
+    // it back; none is generated again.
+    Scheduler scheduler(catalog_, disk, options(0, 0.0, 1));
+    const FrameDecision frame = scheduler.update(camera, 1.0);
+    EXPECT_EQ(frame.readyBatches, 0u);
+    ASSERT_FALSE(frame.started.empty());
+    scheduler.drain();
+    const cache::CacheStats read = disk.stats();
+    EXPECT_EQ(read.diskHits - written.diskHits, frame.started.size());
+    EXPECT_EQ(read.generations, written.generations);
+    std::filesystem::remove_all(folder);
 }
 
 TEST_F(SchedulerTest, ATimeBudgetStartsOneBatchPerFrameWhenSpent) {

@@ -74,6 +74,10 @@ public:
 
     // Memory, then disk (a disk hit is promoted to memory); nullptr on a miss.
     SetPtr find(const BatchKey& key);
+    // The memory tier alone, for a caller that must not wait for the disk (a frame with
+    // background workers): a hit counts as find()'s would; a miss is not counted, since the
+    // caller goes on to getOrGenerate(), which counts it (and reads the disk there).
+    SetPtr findInMemory(const BatchKey& key);
     // Into memory and, with a disk tier, queued for the disk (written on the writer's thread).
     void insert(const BatchKey& key, grammar::TerminalSet set);
     // find(), else `generate` once per key however many threads ask at the same time: the
