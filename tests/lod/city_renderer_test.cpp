@@ -169,7 +169,8 @@ TEST_F(CityRendererTest, MultisampledTreeBillboardsCoverWhatTheirTreesCover) {
 }
 
 TEST_F(CityRendererTest, TreesAPixelOrTwoAcrossArePointsThatCoverWhatTheirBillboardsCover) {
-    // Trees only, from 300 m: each about three pixels across, under the point size (2 x 2 px).
+    // Trees only, from 300 m: each about three pixels across, under the point size (twice the
+    // default 2 px error bound).
     testing::TestCity city = testing::makeCity(0, 120);
     const SceneImpostors impostors = bake(city);
     const scene::CameraPose pose = lookAt({-200, -220, 40}, {0, 0, 0});
