@@ -248,6 +248,11 @@ void DiskTier::store(const BatchKey& key, const grammar::TerminalSet& set) {
     evictOverBudgetLocked();
 }
 
+void DiskTier::countWriteFailure() {
+    std::lock_guard lock(mutex_);
+    ++stats_.writeFailures;
+}
+
 DiskTierStats DiskTier::stats() const {
     std::lock_guard lock(mutex_);
     return stats_;

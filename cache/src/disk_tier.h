@@ -41,6 +41,7 @@ public:
     // another key is deleted and counted.
     std::optional<grammar::TerminalSet> load(const BatchKey& key);
     void store(const BatchKey& key, const grammar::TerminalSet& set);
+    void countWriteFailure();
     DiskTierStats stats() const;
     std::filesystem::path pathOf(const BatchKey& key) const;
 

@@ -37,7 +37,11 @@ void DiskWriter::run() {
         queue_.pop_front();
         ++writing_;
         lock.unlock();
-        tier_.store(job.key, *job.set);
+        try {
+            tier_.store(job.key, *job.set);
+        } catch (...) {
+            tier_.countWriteFailure(); // out of memory while encoding: the set stays in memory only
+        }
         const uint64_t bytes = job.set->byteSize();
         job.set.reset(); // unpinned before anyone waiting on flush() looks at the cache
         lock.lock();

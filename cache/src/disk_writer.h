@@ -1,7 +1,8 @@
 // The disk tier's writer: encodes and writes sets on a thread of its own, so the thread that
 // generated a set (in a walk, often the frame's own) does not wait for zstd and the file
-// system. A queued set stays pinned in the memory tier until it is written, so nothing the
-// writer still needs can be evicted, and a find() meanwhile is a memory hit.
+// system. The writer holds each queued set until it is written, so the memory tier cannot
+// evict an entry it still has to write (a set the tier dropped before it was queued, being
+// over budget, is written all the same). A write that fails counts as one in the tier's stats.
 #pragma once
 
 #include "disk_tier.h"
@@ -27,7 +28,8 @@ public:
     DiskWriter& operator=(const DiskWriter&) = delete;
 
     void enqueue(const BatchKey& key, SetPtr set);
-    // Returns once every set enqueued before the call is on disk (or its write failed).
+    // Returns once the queue is empty and no write is in progress: every set enqueued before
+    // the call is on disk (or its write failed), and so may later ones be.
     void flush();
 
 private:

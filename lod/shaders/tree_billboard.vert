@@ -35,7 +35,7 @@ void main() {
     vec4 sphere = spheres[vSpecies];
     vBase = tree.xyz + cull.trees.yzw;
     vec3 centre = vBase + sphere.xyz;
-    if (treeIsPoint(centre, sphere.w)) { // the point pass draws it
+    if (treeIsPoint(tree.xyz, cull.trees.yzw, sphere)) { // the point pass draws it
         gl_Position = kNoVertex;
         return;
     }

@@ -48,7 +48,7 @@ void main() {
     uint species = uint(tree.w);
     vec4 sphere = spheres[species];
     vec3 centre = tree.xyz + cull.trees.yzw + sphere.xyz;
-    if (!treeIsPoint(centre, sphere.w)) {
+    if (!treeIsPoint(tree.xyz, cull.trees.yzw, sphere)) {
         gl_Position = kNoPoint;
         return;
     }

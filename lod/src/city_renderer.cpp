@@ -264,8 +264,6 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     const cache::CacheStats cacheScheduled = cache_.stats();
     stats.generationMs =
         (cacheScheduled.generationSecondsTotal - cacheBefore.generationSecondsTotal) * 1000.0;
-    stats.diskLoadMs = (cacheScheduled.diskLoadSecondsTotal - cacheBefore.diskLoadSecondsTotal) * 1000.0;
-    stats.diskStoreMs = (cacheScheduled.diskStoreSecondsTotal - cacheBefore.diskStoreSecondsTotal) * 1000.0;
 
     // 2. Upload: ready terminal sets into the arena; base volumes for extruded cells, for the
     // shells under terminals, and for batches still being generated (so nothing vanishes).
@@ -299,11 +297,15 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         if (cell.lod == cells::CellLod::Terminals) {
             ++stats.cellsPerLod[4];
             for (uint32_t b : cell.ready) {
-                std::shared_ptr<const grammar::TerminalSet> set = cache_.find(catalog_.key(b));
+                // With workers the frame never reads the disk: a set evicted since the
+                // scheduler saw it waits for the next frame's request, as a pending batch.
+                std::shared_ptr<const grammar::TerminalSet> set = options_.schedulerWorkers > 0
+                                                                      ? cache_.findInMemory(catalog_.key(b))
+                                                                      : cache_.find(catalog_.key(b));
                 const ArenaBatch* resident = set ? arena_.acquire(catalog_.key(b).digest(), *set) : nullptr;
                 const bool building = catalog_.batch(b).grammar < buildingGrammars;
                 if (!resident) {
-                    ++stats.batchesRejected;
+                    ++(set ? stats.batchesRejected : stats.batchesPending);
                     if (building)
                         volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f});
                     else
@@ -465,6 +467,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.frameMs = millisecondsSince(frameStart);
 
     const cache::CacheStats cacheAfter = cache_.stats();
+    stats.diskLoadMs = (cacheAfter.diskLoadSecondsTotal - cacheBefore.diskLoadSecondsTotal) * 1000.0;
+    stats.diskStoreMs = (cacheAfter.diskStoreSecondsTotal - cacheBefore.diskStoreSecondsTotal) * 1000.0;
     stats.cacheBytes = cacheAfter.memoryBytes;
     stats.cacheLookups = cacheAfter.lookups - cacheBefore.lookups;
     stats.cacheHits = cacheAfter.hits - cacheBefore.hits;

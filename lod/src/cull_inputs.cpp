@@ -9,11 +9,6 @@
 #include <cmath>
 
 namespace hexlod::lod {
-namespace {
-
-constexpr uint32_t kPageMaxTiles = 256;
-
-} // namespace
 
 double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,
                    uint32_t viewportHeight) {
@@ -91,10 +86,10 @@ CullPages selectCullPages(const CullInputs& inputs) {
                     out.skippedTerminals += count;
                     continue;
                 }
-                // A page is larger than a terminal: worth more tile lookups.
                 if (std::isfinite(sphere.w) &&
                     tilesHideSphere(inputs.frame, inputs.occlusionTiles,
-                                    glm::vec4(glm::vec3(sphere) + origin, sphere.w), kPageMaxTiles)) {
+                                    glm::vec4(glm::vec3(sphere) + origin, sphere.w),
+                                    HEXLOD_OCCLUSION_MAX_TILES)) {
                     out.skippedTerminals += count;
                     out.occludedTerminals += count;
                     continue;

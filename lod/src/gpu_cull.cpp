@@ -15,7 +15,7 @@ constexpr uint32_t kWorkgroupSize = 64; // cull_finalize.comp's local size
 
 // The GLSL binding of each buffer (terminal_cull.comp, cull_finalize.comp).
 constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7, 11};
-// The occlusion tiles' texture unit: the pass runs before any draw binds textures.
+// The occlusion tiles' texture unit: every pass after the cull binds its own textures.
 constexpr uint32_t kOcclusionUnit = 0;
 
 } // namespace

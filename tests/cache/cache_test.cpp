@@ -388,9 +388,9 @@ TEST(DiskTier, AFileUnderAnotherKeysNameIsDroppedAndRegenerated) {
     expectDamageIsRegenerated(Damage::OtherKeysName, "rename");
 }
 
-// Sets go to disk on the writer's thread: a set waiting for it stays in memory (a find is a
-// memory hit), and whatever is still queued when the cache goes is written before it goes.
-TEST(DiskTier, QueuedWritesStayInMemoryAndAreFinishedOnDestruction) {
+// Sets go to disk on the writer's thread: flushDisk() waits for them and unpins them, and
+// whatever is still queued when the cache goes is written before it goes.
+TEST(DiskTier, QueuedWritesAreFlushedOrFinishedOnDestruction) {
     const fs::path folder = freshFolder("queued");
     {
         TerminalSetCache cache(diskOptions(folder, 0)); // memory keeps only what is pinned

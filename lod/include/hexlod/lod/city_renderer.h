@@ -73,15 +73,15 @@ struct FrameStats {
     // (timer queries read 0 on llvmpipe, so the frame ends with glFinish).
     double scheduleMs = 0.0, generationMs = 0.0, uploadMs = 0.0, cullMs = 0.0, drawMs = 0.0, gpuWaitMs = 0.0,
            frameMs = 0.0;
-    // The cache's disk tier during the frame, on any thread: reading and decoding evicted
-    // sets back, encoding and writing new ones (like generationMs, part of scheduleMs when
-    // the frame generates its own batches).
+    // The cache's disk tier from the frame's start to its end, on any thread: reading and
+    // decoding evicted sets back (on the frame's thread without workers, part of scheduleMs),
+    // encoding and writing new ones (on the cache's writer thread, alongside the frame).
     double diskLoadMs = 0.0, diskStoreMs = 0.0;
     uint64_t triangles = 0, draws = 0;
     std::array<uint64_t, 5> terminalsPerLod{}; // LOD2..LOD4 drawn terminals (0 and 1 unused)
     std::array<uint32_t, 5> cellsPerLod{};     // cells in view: 0 and 1 extruded, 4 with terminal sets
     // Terminals of the batches drawn: culled one by one on the GPU, or skipped with their
-    // arena page, whose bounds lie outside the frustum.
+    // arena page, whose bounds lie outside the frustum or behind the occlusion tiles.
     uint64_t cullTerminals = 0, cullSkippedTerminals = 0;
     // Terminals the base volumes and ground hide: skipped with their page, or culled one by one.
     uint64_t cullOccludedTerminals = 0;

@@ -183,7 +183,11 @@ HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, boo
 // holds (a texture on the GPU, a copy on the CPU) with `tiles <= nearestDepth` meaning "may
 // show it". False means the sphere cannot be found hidden: no occlusion test this frame, the
 // sphere reaches the near plane, or it covers more than `maxTiles` tiles.
-#define HEXLOD_OCCLUSION_MAX_TILES 16u
+// A page of terminals (page_bounds.h) is tested with the same limit, so that a page found
+// hidden holds only terminals the test finds hidden: each one's rectangle lies within the
+// page's. The loop stops at the first tile that may show the sphere, so near terminals
+// that cover many tiles cost little unless they are hidden.
+#define HEXLOD_OCCLUSION_MAX_TILES 256u
 HEXLOD_FN bool occlusionRect(vec3 centre, float radius, CullFrame frame, uint maxTiles,
                              HEXLOD_OUT(uvec4) tiles, HEXLOD_OUT(float) nearestDepth) {
     tiles = uvec4(0u, 0u, 0u, 0u);

@@ -1,5 +1,6 @@
 // The GPU cull and LOD pass (thesis §7.5.3): terminal_cull.comp over every terminal of the
-// resident batches in view (but pages wholly outside the frustum, skipped on the CPU), then
+// resident batches in view (but pages wholly outside the frustum or behind the occlusion
+// tiles, skipped on the CPU), then
 // cull_finalize.comp turning its counters into indirect draw commands. Needs a current GL context. Its
 // buffers grow when a frame needs more and are otherwise reused frame after frame.
 #pragma once
