@@ -1,6 +1,7 @@
 // The frame: scheduling, upload, the cull pass and the draws.
 #include "hexlod/lod/city_renderer.h"
 #include "hexlod/lod/lod1_codegen.h"
+#include "hexlod/lod/occlusion_tests.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/gpu_types.h"
 #include "hexlod/render/mesh_vertex_format.h"
@@ -307,7 +308,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                 if (!resident) {
                     ++(set ? stats.batchesRejected : stats.batchesPending);
                     if (building)
-                        volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f});
+                        volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f, true});
                     else
                         billboards.emplace_back(b, true);
                     continue;
@@ -318,12 +319,12 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                                           shapes_.shapeBase(catalog_.batch(b).grammar), &resident->spheres});
                 pinned.push_back(std::move(set));
                 ++stats.batchesDrawn;
-                if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), false, 1.0f});
+                if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), false, 1.0f, true});
             }
             for (uint32_t b : cell.requested) {
                 ++stats.batchesPending;
                 if (catalog_.batch(b).grammar < buildingGrammars)
-                    volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f});
+                    volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f, true});
                 else
                     billboards.emplace_back(b, true);
             }
@@ -353,7 +354,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                     billboards.emplace_back(b, true);
                     continue;
                 }
-                volumes.push_back({&volumes_.acquire(b, 0.0f), true, lod0Blend});
+                volumes.push_back(
+                    {&volumes_.acquire(b, 0.0f), true, lod0Blend, cell.distance < lod1Distance});
                 ++stats.batchesDrawn;
             }
         }
@@ -392,7 +394,29 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glCullFace(GL_BACK);
     PassTimer timer(options_.timePasses, stats.passMs);
     if (depthTiles_.valid()) depthTiles_.clearCounts();
+    // Volumes of the near cells first; the farther ones only where the tiles of those leave
+    // them a chance to show (at street level, most of the city behind the street's walls).
+    auto far =
+        std::stable_partition(volumes.begin(), volumes.end(), [](const VolumeDraw& v) { return v.occluder; });
+    std::vector<VolumeDraw> farVolumes(far, volumes.end());
+    volumes.erase(far, volumes.end());
     drawVolumes(volumes, pose.position, stats, timer);
+    if (options_.dropHidden && !volumes.empty() && !farVolumes.empty() && depthTiles_.valid()) {
+        depthTiles_.build(target_.depthTexture());
+        const std::vector<float> tiles = depthTiles_.read();
+        shared::CullFrame occlusion{};
+        setOcclusion(occlusion, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
+                     options_.height, depthTiles_.columns(), depthTiles_.rows(), kDepthTileSize);
+        std::erase_if(farVolumes, [&](const VolumeDraw& v) {
+            const glm::vec3 origin(v.mesh->cellOrigin - pose.position);
+            const bool hidden =
+                tilesHideBox(occlusion, &tiles, origin + v.mesh->boundsMin, origin + v.mesh->boundsMax);
+            stats.volumesOccluded += hidden;
+            return hidden;
+        });
+        timer.restart();
+    }
+    drawVolumes(farVolumes, pose.position, stats, timer);
     stats.triangles += ground_.draw(programs_->volume, pose.position);
     stats.draws += 2;
     timer.end(DrawPass::Ground);

@@ -1,5 +1,6 @@
 // The reference pass: a loop over the records with the shared decision.
 #include "hexlod/lod/cpu_cull.h"
+#include "hexlod/lod/occlusion_tests.h"
 
 #include <cstring>
 

@@ -1,5 +1,6 @@
 // Frame constants, the pages to cull and the draw-list layout for the cull pass.
 #include "hexlod/lod/cull_inputs.h"
+#include "hexlod/lod/occlusion_tests.h"
 #include "hexlod/lod/page_bounds.h"
 #include "hexlod/lod/terminal_arena.h"
 
@@ -51,19 +52,6 @@ void setOcclusion(shared::CullFrame& frame, const glm::dvec3& forward, const glm
     frame.depthMap = glm::vec4(float(nearPlane * farPlane / (farPlane - nearPlane)),
                                float(nearPlane / (farPlane - nearPlane)), float(width), float(height));
     frame.occlusion = glm::vec4(float(columns), float(rows), float(tilePixels), 0.0f);
-}
-
-bool tilesHideSphere(const shared::CullFrame& frame, const std::vector<float>* tiles, const glm::vec4& sphere,
-                     uint32_t maxTiles) {
-    glm::uvec4 rect;
-    float nearest = 0.0f;
-    if (!tiles || !shared::occlusionRect(glm::vec3(sphere), sphere.w, frame, maxTiles, rect, nearest))
-        return false;
-    const uint32_t columns = uint32_t(frame.occlusion.x);
-    for (uint32_t y = rect.y; y <= rect.w; ++y)
-        for (uint32_t x = rect.x; x <= rect.z; ++x)
-            if ((*tiles)[size_t(y) * columns + x] <= nearest) return false;
-    return true;
 }
 
 CullPages selectCullPages(const CullInputs& inputs) {

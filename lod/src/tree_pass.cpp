@@ -1,6 +1,7 @@
 #include "hexlod/lod/tree_pass.h"
 #include "hexlod/lod/cull_inputs.h"
 #include "hexlod/lod/gpu_cull.h"
+#include "hexlod/lod/occlusion_tests.h"
 #include "hexlod/lod/page_bounds.h"
 #include "hexlod/lod/tree_view_averages.h"
 #include "hexlod/render/gl_api.h"

@@ -85,6 +85,8 @@ struct FrameStats {
     uint64_t cullTerminals = 0, cullSkippedTerminals = 0;
     // Terminals the base volumes and ground hide: skipped with their page, or culled one by one.
     uint64_t cullOccludedTerminals = 0;
+    // Batches of far base volumes (LOD0) not drawn: the nearer volumes' depth hides their box.
+    uint32_t volumesOccluded = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint32_t treePoints = 0;                  // far trees submitted to the point pass
@@ -126,6 +128,7 @@ private:
         const VolumeMesh* mesh;
         bool textured;   // LOD0's wall texture (not under terminals)
         float lod0Blend; // 1: LOD0; below 1: LOD1, blending into LOD0
+        bool occluder;   // drawn before the far volumes are tested against its depth
     };
     // LOD4 meshes; also counts every terminal drawn, per LOD, into stats.
     void drawTerminalMeshes(FrameStats& stats, PassTimer& timer);

@@ -63,12 +63,6 @@ void setOcclusion(shared::CullFrame& frame, const glm::dvec3& forward, const glm
                   double nearPlane, double farPlane, uint32_t width, uint32_t height, uint32_t columns,
                   uint32_t rows, uint32_t tilePixels);
 
-// Whether `tiles` (as CullInputs::occlusionTiles; null: none) hide a camera-relative sphere
-// (xyz, radius) that covers at most `maxTiles` tiles: the test terminal_cull.comp makes per
-// terminal, on the CPU.
-bool tilesHideSphere(const shared::CullFrame& frame, const std::vector<float>* tiles, const glm::vec4& sphere,
-                     uint32_t maxTiles);
-
 // The distance from which a LOD of geometric error `error` is enough.
 double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,
                    uint32_t viewportHeight);

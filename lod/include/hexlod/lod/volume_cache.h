@@ -19,6 +19,8 @@ struct VolumeMesh {
     uint32_t grammar = 0;
     uint64_t bytes = 0;
     glm::dvec3 cellOrigin{0.0};
+    // Cell-local bounds of its vertices, for the occlusion test (min > max: no vertex).
+    glm::vec3 boundsMin{1.0f}, boundsMax{0.0f};
     uint64_t lastUsed = 0;
 };
 

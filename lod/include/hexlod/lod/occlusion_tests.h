@@ -1,0 +1,30 @@
+// The CPU side of the occlusion test against DepthTiles: whether the tiles of what the frame
+// has drawn so far hide a bounding volume. The cull pass's own test (occlusionRect in
+// cull_shared.h) runs on the GPU per terminal; these run per page of terminals, per chunk of
+// trees and per batch of base volumes, before any of their work is submitted.
+#pragma once
+
+#include "hexlod/lod/cull_shared.h"
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace hexlod::lod {
+
+// Whether `tiles` (row by row from the bottom, as DepthTiles::read; null: none) hide a
+// camera-relative sphere (xyz, radius) that covers at most `maxTiles` tiles: the test
+// terminal_cull.comp makes per terminal, with the same rounding.
+bool tilesHideSphere(const shared::CullFrame& frame, const std::vector<float>* tiles, const glm::vec4& sphere,
+                     uint32_t maxTiles);
+
+// Whether `tiles` hide a camera-relative axis-aligned box [boxMin, boxMax]: every tile its
+// eight corners' screen rectangle covers holds depth nearer than the box's nearest corner.
+// A box that reaches the near plane, or is empty or not finite, is never hidden. A city's
+// batches are wide and low, so a box fits them far tighter than a sphere.
+bool tilesHideBox(const shared::CullFrame& frame, const std::vector<float>* tiles, const glm::vec3& boxMin,
+                  const glm::vec3& boxMax);
+
+} // namespace hexlod::lod
