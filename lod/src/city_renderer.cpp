@@ -308,7 +308,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                 if (!resident) {
                     ++(set ? stats.batchesRejected : stats.batchesPending);
                     if (building)
-                        volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f, true});
+                        volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f, 0});
                     else
                         billboards.emplace_back(b, true);
                     continue;
@@ -319,12 +319,12 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                                           shapes_.shapeBase(catalog_.batch(b).grammar), &resident->spheres});
                 pinned.push_back(std::move(set));
                 ++stats.batchesDrawn;
-                if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), false, 1.0f, true});
+                if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), false, 1.0f, 0});
             }
             for (uint32_t b : cell.requested) {
                 ++stats.batchesPending;
                 if (catalog_.batch(b).grammar < buildingGrammars)
-                    volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f, true});
+                    volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f, 0});
                 else
                     billboards.emplace_back(b, true);
             }
@@ -354,8 +354,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                     billboards.emplace_back(b, true);
                     continue;
                 }
-                volumes.push_back(
-                    {&volumes_.acquire(b, 0.0f), true, lod0Blend, cell.distance < lod1Distance});
+                volumes.push_back({&volumes_.acquire(b, 0.0f), true, lod0Blend,
+                                   uint8_t(cell.distance < lod1Distance ? 1 : 2)});
                 ++stats.batchesDrawn;
             }
         }
@@ -394,29 +394,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glCullFace(GL_BACK);
     PassTimer timer(options_.timePasses, stats.passMs);
     if (depthTiles_.valid()) depthTiles_.clearCounts();
-    // Volumes of the near cells first; the farther ones only where the tiles of those leave
-    // them a chance to show (at street level, most of the city behind the street's walls).
-    auto far =
-        std::stable_partition(volumes.begin(), volumes.end(), [](const VolumeDraw& v) { return v.occluder; });
-    std::vector<VolumeDraw> farVolumes(far, volumes.end());
-    volumes.erase(far, volumes.end());
-    drawVolumes(volumes, pose.position, stats, timer);
-    if (options_.dropHidden && !volumes.empty() && !farVolumes.empty() && depthTiles_.valid()) {
-        depthTiles_.build(target_.depthTexture());
-        const std::vector<float> tiles = depthTiles_.read();
-        shared::CullFrame occlusion{};
-        setOcclusion(occlusion, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
-                     options_.height, depthTiles_.columns(), depthTiles_.rows(), kDepthTileSize);
-        std::erase_if(farVolumes, [&](const VolumeDraw& v) {
-            const glm::vec3 origin(v.mesh->cellOrigin - pose.position);
-            const bool hidden =
-                tilesHideBox(occlusion, &tiles, origin + v.mesh->boundsMin, origin + v.mesh->boundsMax);
-            stats.volumesOccluded += hidden;
-            return hidden;
-        });
-        timer.restart();
-    }
-    drawVolumes(farVolumes, pose.position, stats, timer);
+    drawVolumeRings(volumes, pose, nearPlane, farPlane, stats, timer);
     stats.triangles += ground_.draw(programs_->volume, pose.position);
     stats.draws += 2;
     timer.end(DrawPass::Ground);
@@ -579,6 +557,34 @@ void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, const F
     gl::glBindVertexArray(0);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     timer.end(DrawPass::Impostors);
+}
+
+void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,
+                                   double nearPlane, double farPlane, FrameStats& stats, PassTimer& timer) {
+    shared::CullFrame occlusion{};
+    setOcclusion(occlusion, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
+                 options_.height, depthTiles_.columns(), depthTiles_.rows(), kDepthTileSize);
+    bool drawnBefore = false;
+    for (uint8_t ring = 0; ring < kVolumeRings; ++ring) {
+        std::vector<VolumeDraw> draws;
+        for (const VolumeDraw& draw : volumes)
+            if (draw.ring == ring) draws.push_back(draw);
+        if (draws.empty()) continue;
+        if (options_.dropHidden && drawnBefore && depthTiles_.valid()) {
+            depthTiles_.build(target_.depthTexture());
+            const std::vector<float> tiles = depthTiles_.read();
+            std::erase_if(draws, [&](const VolumeDraw& draw) {
+                const glm::vec3 origin(draw.mesh->cellOrigin - pose.position);
+                const bool hidden = tilesHideBox(occlusion, &tiles, origin + draw.mesh->boundsMin,
+                                                 origin + draw.mesh->boundsMax);
+                stats.volumesOccluded += hidden;
+                return hidden;
+            });
+            timer.restart(); // the tiles belong to no pass
+        }
+        drawVolumes(draws, pose.position, stats, timer);
+        drawnBefore = true;
+    }
 }
 
 void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,

@@ -247,25 +247,30 @@ TEST_F(CityRendererTest, HiddenImpostorsAndBillboardsAreDroppedWithoutChangingAP
 }
 
 TEST_F(CityRendererTest, FarBaseVolumesTheNearOnesHideAreNotDrawnAndNoPixelChanges) {
-    // At street level, with LOD0 claiming 1 m so that the cells within 42 m draw before the
-    // test: the block in front hides most of the far cells' volumes.
+    // At street level, with LOD0 claiming 1 m so that the cells within 42 m form the first
+    // ring of volumes: the block in front hides most of the far cells' volumes, drawn at LOD0
+    // or ray-cast at LOD1.
     testing::TestCity city = testing::makeCity(200, 0);
     const SceneImpostors impostors = bake(city);
     const scene::CameraPose pose = lookAt({-100, -51, 2}, {300, 0, 4});
     scene::LodProfile lod;
     lod.geometricError[0] = 1.0;
-    for (uint32_t samples : {1u, 4u}) {
-        Rendered all = render(city, impostors, RenderMode::AllLod0, pose, 1, samples, false, lod);
-        Rendered culled = render(city, impostors, RenderMode::AllLod0, pose, 1, samples, true, lod);
-        EXPECT_EQ(all.stats.volumesOccluded, 0u);
-        EXPECT_GT(culled.stats.volumesOccluded, 0u) << samples << " samples";
-        EXPECT_LT(culled.stats.volumesOccluded, culled.stats.batchesDrawn) << samples << " samples";
-        EXPECT_LT(culled.stats.triangles, all.stats.triangles) << samples << " samples";
-        std::printf("%u samples: %u of %u batches' volumes hidden, %llu of %llu triangles drawn\n", samples,
-                    culled.stats.volumesOccluded, culled.stats.batchesDrawn,
-                    static_cast<unsigned long long>(culled.stats.triangles),
-                    static_cast<unsigned long long>(all.stats.triangles));
-        EXPECT_EQ(culled.image.pixels, all.image.pixels) << samples << " samples";
+    for (RenderMode mode : {RenderMode::AllLod0, RenderMode::AllLod1}) {
+        for (uint32_t samples : {1u, 4u}) {
+            const std::string what =
+                std::string(renderModeName(mode)) + ", " + std::to_string(samples) + " samples";
+            Rendered all = render(city, impostors, mode, pose, 1, samples, false, lod);
+            Rendered culled = render(city, impostors, mode, pose, 1, samples, true, lod);
+            EXPECT_EQ(all.stats.volumesOccluded, 0u) << what;
+            EXPECT_GT(culled.stats.volumesOccluded, 0u) << what;
+            EXPECT_LT(culled.stats.volumesOccluded, culled.stats.batchesDrawn) << what;
+            EXPECT_LT(culled.stats.triangles, all.stats.triangles) << what;
+            std::printf("%s: %u of %u batches' volumes hidden, %llu of %llu triangles drawn\n", what.c_str(),
+                        culled.stats.volumesOccluded, culled.stats.batchesDrawn,
+                        static_cast<unsigned long long>(culled.stats.triangles),
+                        static_cast<unsigned long long>(all.stats.triangles));
+            EXPECT_EQ(culled.image.pixels, all.image.pixels) << what;
+        }
     }
 }
 

@@ -85,7 +85,7 @@ struct FrameStats {
     uint64_t cullTerminals = 0, cullSkippedTerminals = 0;
     // Terminals the base volumes and ground hide: skipped with their page, or culled one by one.
     uint64_t cullOccludedTerminals = 0;
-    // Batches of far base volumes (LOD0) not drawn: the nearer volumes' depth hides their box.
+    // Batches of base volumes of extruded cells not drawn: the nearer volumes' depth hides their box.
     uint32_t volumesOccluded = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
@@ -128,12 +128,20 @@ private:
         const VolumeMesh* mesh;
         bool textured;   // LOD0's wall texture (not under terminals)
         float lod0Blend; // 1: LOD0; below 1: LOD1, blending into LOD0
-        bool occluder;   // drawn before the far volumes are tested against its depth
+        // Drawn nearest ring first: 0, under terminal sets; 1, extruded cells within LOD1's
+        // distance; 2, beyond it. A ring draws only the batches whose box the depth of the
+        // rings before it does not hide.
+        uint8_t ring;
     };
+    static constexpr uint8_t kVolumeRings = 3;
     // LOD4 meshes; also counts every terminal drawn, per LOD, into stats.
     void drawTerminalMeshes(FrameStats& stats, PassTimer& timer);
     // LOD2 and LOD3; LOD3 ray-casts from the unprojected screen (inverseViewProjection).
     void drawImpostors(const glm::mat4& inverseViewProjection, const FrameStats& stats, PassTimer& timer);
+    // The base volumes ring by ring, each against the depth tiles of the rings before it: at
+    // street level most of the city stands behind the street's walls.
+    void drawVolumeRings(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,
+                         double nearPlane, double farPlane, FrameStats& stats, PassTimer& timer);
     void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats,
                      PassTimer& timer);
 
