@@ -1,8 +1,6 @@
 // Whether a screen rectangle lies wholly behind what the frame has drawn so far, from the
 // farthest depth of each tile (depth_tiles.comp). Needs frame.glsl (the viewport).
-uniform sampler2D depthTiles;
-uniform uint depthTileSize;
-uniform uint depthTilesEnabled;
+#include "depth_tile_lookup.glsl"
 uniform uint depthTileCount; // which count a dropped rectangle adds to (TileTest)
 layout(std430, binding = 14) buffer DroppedBuffer { uint droppedRectangles[]; };
 
@@ -14,7 +12,7 @@ void countDropped() {
 // `ndcLo`, `ndcHi`: the rectangle's corners in normalised device coordinates; `nearest`: the
 // window depth (reversed-Z) of its nearest point. A rectangle over more tiles than this is not
 // worth the lookups and counts as visible.
-const int kMaxDepthTileLookups = 16;
+const int kMaxDepthTileLookups = 64;
 
 bool behindDepthTiles(vec2 ndcLo, vec2 ndcHi, float nearest) {
     if (depthTilesEnabled == 0u) return false;

@@ -11,6 +11,7 @@ uniform usampler2D impostorTableViews;
 uniform sampler2D impostorTableWeights;
 uniform uvec4 impostorLayout;
 #include "impostor_views.glsl"
+#include "depth_tile_lookup.glsl"
 
 uniform uint centralView;        // the view nearest the wall's normal
 uniform uint parallaxIterations; // LOD3
@@ -23,6 +24,7 @@ flat in vec3 vCorner, vAxisX, vAxisY, vAxisZ, vScope;
 flat in vec3 vBoxLo, vBoxHi;
 flat in uint vShape;
 flat in float vTransition;
+flat in float vNearestDepth;
 uniform uint alphaToCoverage;
 layout(location = 0) out vec4 colour;
 
@@ -33,6 +35,7 @@ vec3 toNominal(vec3 local, vec3 nominal) {
 }
 
 void main() {
+    if (fragmentBehindDepthTile(gl_FragCoord.xy, vNearestDepth)) discard;
     GpuShape shape = shapes[vShape];
     uint layer = uint(shape.nominalSize.w);
     vec4 sphere = spheres[layer];

@@ -19,6 +19,7 @@ flat out vec3 vCorner, vAxisX, vAxisY, vAxisZ, vScope;
 flat out vec3 vBoxLo, vBoxHi; // the mesh bounds in scope metres
 flat out uint vShape;
 flat out float vTransition;
+flat out float vNearestDepth; // window depth of the box's nearest point
 
 void main() {
     DrawEntry e = drawEntry(pulledRecord());
@@ -68,6 +69,7 @@ void main() {
     }
     lo = max(lo, vec2(-1.0));
     hi = min(hi, vec2(1.0));
+    vNearestDepth = nearest;
     if (behindDepthTiles(lo, hi, nearest)) {
         countDropped();
         gl_Position = kNoVertex;

@@ -10,6 +10,7 @@ uniform usampler2D impostorTableViews;
 uniform sampler2D impostorTableWeights;
 uniform uvec4 impostorLayout;
 #include "impostor_views.glsl"
+#include "depth_tile_lookup.glsl"
 
 layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; };
 
@@ -17,10 +18,12 @@ in vec3 vPosition;
 flat in vec3 vBase;
 flat in uint vSpecies;
 flat in uint vOneView;
+flat in float vNearestDepth;
 uniform uint alphaToCoverage;
 layout(location = 0) out vec4 colour;
 
 void main() {
+    if (fragmentBehindDepthTile(gl_FragCoord.xy, vNearestDepth)) discard;
     vec4 sphere = spheres[vSpecies];
     vec3 forward = -normalize(vPosition);
     vec3 q = (vPosition - vBase - sphere.xyz) / sphere.w;

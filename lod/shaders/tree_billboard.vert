@@ -3,8 +3,9 @@
 // leaves to its species impostor: a camera-facing square over the impostor's bounding sphere,
 // blending four views (as LOD3) or, beyond LOD2's distance, showing the nearest (as LOD2);
 // smaller on screen than tree_size.glsl's limit, a point instead (tree_point.vert). It is
-// dropped whole when what the frame drew before hides it (depth_tiles.glsl): the fragment
-// shader writes its depth, so the GL cannot reject hidden fragments before shading them.
+// dropped whole when what the frame drew before hides it (depth_tiles.glsl), and its fragments
+// where that hides their tile: the fragment shader writes its depth, so the GL cannot reject
+// hidden fragments before shading them.
 #include "gpu_types.h"
 #include "cull_shared.h"
 #include "frame.glsl"
@@ -24,6 +25,7 @@ out vec3 vPosition;
 flat out vec3 vBase;
 flat out uint vSpecies;
 flat out uint vOneView; // beyond LOD2's distance: the nearest view alone, as LOD2 draws facades
+flat out float vNearestDepth; // window depth of the sphere's nearest point (2: none; no fragment is dropped)
 
 void main() {
     vec4 tree = billboardTrees[pulledRecord()];
@@ -44,11 +46,12 @@ void main() {
     vec3 up = abs(toCamera.z) > 0.999 ? vec3(0, 1, 0) : vec3(0, 0, 1);
     vec3 right = normalize(cross(up, toCamera));
     up = cross(toCamera, right);
-    // The square's screen rectangle, and the depth of the sphere's nearest point: the tree's
-    // surface lies behind it. Skipped when the camera is inside the sphere or a corner is
-    // behind it.
+    // The square's screen rectangle, and the depth of the sphere's nearest point along the
+    // view axis: the tree's surface lies behind it. Skipped when the sphere reaches the near
+    // plane or a corner is behind the camera.
     vec2 lo = vec2(1e30), hi = vec2(-1e30);
-    bool projectable = length(centre) > sphere.w;
+    vec3 forward = vec3(cull.viewForward);
+    bool projectable = depthTilesEnabled != 0u && dot(centre, forward) - sphere.w > cull.viewForward.w;
     for (int c = 0; c < 4; ++c) {
         vec2 at = vec2(float(c & 1), float(c >> 1)) * 2.0 - 1.0;
         vec4 clip = viewProjection * vec4(centre + (at.x * right + at.y * up) * sphere.w, 1.0);
@@ -56,8 +59,9 @@ void main() {
         lo = min(lo, clip.xy / clip.w);
         hi = max(hi, clip.xy / clip.w);
     }
-    vec4 nearest = viewProjection * vec4(centre + toCamera * sphere.w, 1.0);
-    if (projectable && behindDepthTiles(lo, hi, nearest.z / nearest.w)) {
+    vec4 nearest = viewProjection * vec4(centre - forward * sphere.w, 1.0);
+    vNearestDepth = projectable ? nearest.z / nearest.w : 2.0;
+    if (projectable && behindDepthTiles(lo, hi, vNearestDepth)) {
         countDropped();
         gl_Position = kNoVertex;
         return;
