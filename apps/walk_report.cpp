@@ -56,6 +56,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"cull_skipped_terminals", f.cullSkippedTerminals},
         {"cull_occluded_terminals", f.cullOccludedTerminals},
         {"volumes_occluded", f.volumesOccluded},
+        {"volumes_built", f.volumesBuilt},
         {"batches_drawn", f.batchesDrawn},
         {"batches_pending", f.batchesPending},
         {"batches_rejected", f.batchesRejected},

@@ -308,7 +308,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                 if (!resident) {
                     ++(set ? stats.batchesRejected : stats.batchesPending);
                     if (building)
-                        volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f, 0});
+                        volumes.push_back({&volumes_.acquire(b, 0.0f), b, 0.0f, true, 1.0f, 0});
                     else
                         billboards.emplace_back(b, true);
                     continue;
@@ -319,12 +319,12 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                                           shapes_.shapeBase(catalog_.batch(b).grammar), &resident->spheres});
                 pinned.push_back(std::move(set));
                 ++stats.batchesDrawn;
-                if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), false, 1.0f, 0});
+                if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), b, 0.5f, false, 1.0f, 0});
             }
             for (uint32_t b : cell.requested) {
                 ++stats.batchesPending;
                 if (catalog_.batch(b).grammar < buildingGrammars)
-                    volumes.push_back({&volumes_.acquire(b, 0.0f), true, 1.0f, 0});
+                    volumes.push_back({&volumes_.acquire(b, 0.0f), b, 0.0f, true, 1.0f, 0});
                 else
                     billboards.emplace_back(b, true);
             }
@@ -354,7 +354,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                     billboards.emplace_back(b, true);
                     continue;
                 }
-                volumes.push_back({&volumes_.acquire(b, 0.0f), true, lod0Blend,
+                volumes.push_back({volumes_.find(b, 0.0f), b, 0.0f, true, lod0Blend,
                                    uint8_t(cell.distance < lod1Distance ? 1 : 2)});
                 ++stats.batchesDrawn;
             }
@@ -474,6 +474,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.cacheBytes = cacheAfter.memoryBytes;
     stats.cacheLookups = cacheAfter.lookups - cacheBefore.lookups;
     stats.cacheHits = cacheAfter.hits - cacheBefore.hits;
+    stats.volumesBuilt = volumes_.stats().built;
     stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
                      volumes_.stats().residentBytes + ground_.byteSize() + trees_.byteSize() +
                      depthTiles_.byteSize() +
@@ -574,14 +575,25 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
             depthTiles_.build(target_.depthTexture());
             const std::vector<float> tiles = depthTiles_.read();
             std::erase_if(draws, [&](const VolumeDraw& draw) {
-                const glm::vec3 origin(draw.mesh->cellOrigin - pose.position);
-                const bool hidden = tilesHideBox(occlusion, &tiles, origin + draw.mesh->boundsMin,
-                                                 origin + draw.mesh->boundsMax);
+                glm::vec3 lo, hi;
+                if (draw.mesh) {
+                    const glm::vec3 origin(draw.mesh->cellOrigin - pose.position);
+                    lo = origin + draw.mesh->boundsMin, hi = origin + draw.mesh->boundsMax;
+                } else {
+                    // Not built yet: the cell's bounds hold whatever the mesh would.
+                    const cells::CellBounds* cell =
+                        catalog_.index().boundsOf(catalog_.batch(draw.batch).cell);
+                    if (!cell) return false;
+                    lo = glm::vec3(glm::dvec3(cell->lo, cell->zMin) - pose.position);
+                    hi = glm::vec3(glm::dvec3(cell->hi, cell->zMax) - pose.position);
+                }
+                const bool hidden = tilesHideBox(occlusion, &tiles, lo, hi);
                 stats.volumesOccluded += hidden;
                 return hidden;
             });
             timer.restart(); // the tiles belong to no pass
         }
+        for (VolumeDraw& draw : draws) draw.mesh = &volumes_.acquire(draw.batch, draw.inset);
         drawVolumes(draws, pose.position, stats, timer);
         drawnBefore = true;
     }

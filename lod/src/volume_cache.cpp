@@ -56,10 +56,19 @@ void VolumeCache::evict() {
     }
 }
 
-const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset) {
+uint64_t VolumeCache::keyOf(uint32_t batch, float inset) const {
     uint32_t insetBits;
     std::memcpy(&insetBits, &inset, sizeof insetBits);
-    const uint64_t key = catalog_.key(batch).digest() ^ (uint64_t(insetBits) * 0x9e3779b97f4a7c15ull);
+    return catalog_.key(batch).digest() ^ (uint64_t(insetBits) * 0x9e3779b97f4a7c15ull);
+}
+
+const VolumeMesh* VolumeCache::find(uint32_t batch, float inset) const {
+    auto it = meshes_.find(keyOf(batch, inset));
+    return it == meshes_.end() ? nullptr : &it->second;
+}
+
+const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset) {
+    const uint64_t key = keyOf(batch, inset);
     if (auto it = meshes_.find(key); it != meshes_.end()) {
         it->second.lastUsed = frame_;
         return it->second;

@@ -248,8 +248,8 @@ TEST_F(CityRendererTest, HiddenImpostorsAndBillboardsAreDroppedWithoutChangingAP
 
 TEST_F(CityRendererTest, FarBaseVolumesTheNearOnesHideAreNotDrawnAndNoPixelChanges) {
     // At street level, with LOD0 claiming 1 m so that the cells within 42 m form the first
-    // ring of volumes: the block in front hides most of the far cells' volumes, drawn at LOD0
-    // or ray-cast at LOD1.
+    // ring of volumes: the block in front hides half the far cells' volumes, drawn at LOD0 or
+    // ray-cast at LOD1, and those are never built.
     testing::TestCity city = testing::makeCity(200, 0);
     const SceneImpostors impostors = bake(city);
     const scene::CameraPose pose = lookAt({-100, -51, 2}, {300, 0, 4});
@@ -265,6 +265,10 @@ TEST_F(CityRendererTest, FarBaseVolumesTheNearOnesHideAreNotDrawnAndNoPixelChang
             EXPECT_GT(culled.stats.volumesOccluded, 0u) << what;
             EXPECT_LT(culled.stats.volumesOccluded, culled.stats.batchesDrawn) << what;
             EXPECT_LT(culled.stats.triangles, all.stats.triangles) << what;
+            // A hidden batch is not even built: the test used its cell's bounds.
+            EXPECT_EQ(all.stats.volumesBuilt, all.stats.batchesDrawn) << what;
+            EXPECT_EQ(culled.stats.volumesBuilt + culled.stats.volumesOccluded, all.stats.volumesBuilt)
+                << what;
             std::printf("%s: %u of %u batches' volumes hidden, %llu of %llu triangles drawn\n", what.c_str(),
                         culled.stats.volumesOccluded, culled.stats.batchesDrawn,
                         static_cast<unsigned long long>(culled.stats.triangles),

@@ -85,8 +85,9 @@ struct FrameStats {
     uint64_t cullTerminals = 0, cullSkippedTerminals = 0;
     // Terminals the base volumes and ground hide: skipped with their page, or culled one by one.
     uint64_t cullOccludedTerminals = 0;
-    // Batches of base volumes of extruded cells not drawn: the nearer volumes' depth hides their box.
-    uint32_t volumesOccluded = 0;
+    // Batches of base volumes of extruded cells not drawn (nor built, when not resident): the
+    // nearer volumes' depth hides their box. volumesBuilt: base volume meshes built this frame.
+    uint32_t volumesOccluded = 0, volumesBuilt = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint32_t treePoints = 0;                  // far trees submitted to the point pass
@@ -125,12 +126,16 @@ public:
 private:
     struct Programs;
     struct VolumeDraw {
+        // Null until the batch is known to be drawn: beyond the first ring a batch is built
+        // only when the rings before it leave it a chance to show.
         const VolumeMesh* mesh;
+        uint32_t batch;
+        float inset;     // VolumeCache::acquire's
         bool textured;   // LOD0's wall texture (not under terminals)
         float lod0Blend; // 1: LOD0; below 1: LOD1, blending into LOD0
         // Drawn nearest ring first: 0, under terminal sets; 1, extruded cells within LOD1's
-        // distance; 2, beyond it. A ring draws only the batches whose box the depth of the
-        // rings before it does not hide.
+        // distance; 2, beyond it. A ring draws only the batches whose box (the mesh's bounds
+        // when it is resident, else the cell's) the depth of the rings before it does not hide.
         uint8_t ring;
     };
     static constexpr uint8_t kVolumeRings = 3;

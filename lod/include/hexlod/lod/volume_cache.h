@@ -43,10 +43,14 @@ public:
     // The batch's base volumes, walls set `inset` metres inwards (0 for LOD0). Valid until the
     // next acquire() or beginFrame().
     const VolumeMesh& acquire(uint32_t batch, float inset);
+    // The batch's mesh if it is resident, else null: neither builds nor counts as a use, so a
+    // caller can test its bounds before deciding to draw it.
+    const VolumeMesh* find(uint32_t batch, float inset) const;
     VolumeStats stats() const;
 
 private:
     void evict();
+    uint64_t keyOf(uint32_t batch, float inset) const;
 
     const cells::BatchCatalog& catalog_;
     uint64_t budget_;
