@@ -580,7 +580,8 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
                     const glm::vec3 origin(draw.mesh->cellOrigin - pose.position);
                     lo = origin + draw.mesh->boundsMin, hi = origin + draw.mesh->boundsMax;
                 } else {
-                    // Not built yet: the cell's bounds hold whatever the mesh would.
+                    // Not built yet: the cell's bounds, which the scheduler's frustum test
+                    // already trusts to hold the cell's buildings.
                     const cells::CellBounds* cell =
                         catalog_.index().boundsOf(catalog_.batch(draw.batch).cell);
                     if (!cell) return false;
