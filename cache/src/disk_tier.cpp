@@ -80,14 +80,16 @@ std::optional<uint64_t> digestOfName(const fs::path& path) {
     return digest;
 }
 
+// One read of the whole file into a buffer of its size: set files are megabytes, and growing
+// the buffer chunk by chunk copied each one several times over.
 std::optional<std::vector<uint8_t>> readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) return std::nullopt;
-    std::vector<uint8_t> bytes;
-    char buffer[1 << 16];
-    while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)
-        bytes.insert(bytes.end(), buffer, buffer + in.gcount());
-    if (in.bad()) return std::nullopt;
+    const std::streamoff size = in.tellg();
+    if (size < 0 || !in.seekg(0)) return std::nullopt;
+    std::vector<uint8_t> bytes(static_cast<size_t>(size));
+    // A file cut short meanwhile reads as gone; one that grew fails the header's size check.
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) return std::nullopt;
     return bytes;
 }
 
