@@ -25,7 +25,8 @@ out vec3 vPosition;
 flat out vec3 vBase;
 flat out uint vSpecies;
 flat out uint vOneView; // beyond LOD2's distance: the nearest view alone, as LOD2 draws facades
-flat out float vNearestDepth; // window depth of the sphere's nearest point (2: none; no fragment is dropped)
+// Window depth of the sphere's nearest point (2: none, so no fragment is dropped).
+flat out float vNearestDepth;
 
 void main() {
     vec4 tree = billboardTrees[pulledRecord()];

@@ -1,7 +1,7 @@
 // The frame: scheduling, upload, the cull pass and the draws.
 #include "hexlod/lod/city_renderer.h"
+#include "city_renderer_programs.h"
 #include "hexlod/lod/lod1_codegen.h"
-#include "hexlod/lod/occlusion_tests.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/gpu_types.h"
 #include "hexlod/render/mesh_vertex_format.h"
@@ -107,11 +107,6 @@ bool parseRenderMode(std::string_view name, RenderMode& out) {
     }
     return false;
 }
-
-struct CityRenderer::Programs {
-    render::ShaderProgram lod4, impostor, impostorWall, volume; // impostor: LOD3 ray-cast; impostorWall: LOD2
-    std::map<uint32_t, render::ShaderProgram> lod1;             // per building grammar with buildings
-};
 
 CityRenderer::CityRenderer(cells::BatchCatalog& catalog, cache::TerminalSetCache& cache,
                            const render::TerminalMeshLibrary& meshes, const SceneImpostors* impostors,
@@ -558,88 +553,6 @@ void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, const F
     gl::glBindVertexArray(0);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     timer.end(DrawPass::Impostors);
-}
-
-void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,
-                                   double nearPlane, double farPlane, FrameStats& stats, PassTimer& timer) {
-    shared::CullFrame occlusion{};
-    setOcclusion(occlusion, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
-                 options_.height, depthTiles_.columns(), depthTiles_.rows(), kDepthTileSize);
-    bool drawnBefore = false;
-    for (uint8_t ring = 0; ring < kVolumeRings; ++ring) {
-        std::vector<VolumeDraw> draws;
-        for (const VolumeDraw& draw : volumes)
-            if (draw.ring == ring) draws.push_back(draw);
-        if (draws.empty()) continue;
-        if (options_.dropHidden && drawnBefore && depthTiles_.valid()) {
-            depthTiles_.build(target_.depthTexture());
-            const std::vector<float> tiles = depthTiles_.read();
-            std::erase_if(draws, [&](const VolumeDraw& draw) {
-                glm::vec3 lo, hi;
-                if (draw.mesh) {
-                    const glm::vec3 origin(draw.mesh->cellOrigin - pose.position);
-                    lo = origin + draw.mesh->boundsMin, hi = origin + draw.mesh->boundsMax;
-                } else {
-                    // Not built yet: the cell's bounds, which the scheduler's frustum test
-                    // already trusts to hold the cell's buildings.
-                    const cells::CellBounds* cell =
-                        catalog_.index().boundsOf(catalog_.batch(draw.batch).cell);
-                    if (!cell) return false;
-                    lo = glm::vec3(glm::dvec3(cell->lo, cell->zMin) - pose.position);
-                    hi = glm::vec3(glm::dvec3(cell->hi, cell->zMax) - pose.position);
-                }
-                const bool hidden = tilesHideBox(occlusion, &tiles, lo, hi);
-                stats.volumesOccluded += hidden;
-                return hidden;
-            });
-            timer.restart(); // the tiles belong to no pass
-        }
-        for (VolumeDraw& draw : draws) draw.mesh = &volumes_.acquire(draw.batch, draw.inset);
-        drawVolumes(draws, pose.position, stats, timer);
-        drawnBefore = true;
-    }
-}
-
-void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
-                               FrameStats& stats, PassTimer& timer) {
-    // LOD0 first with one program, then LOD1 grammar by grammar.
-    programs_->volume.use();
-    for (const VolumeDraw& draw : volumes) {
-        if (draw.mesh->indexCount == 0 || draw.lod0Blend < 1.0f) continue;
-        programs_->volume.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
-        programs_->volume.set("texturedWalls", uint32_t(draw.textured));
-        gl::glBindVertexArray(draw.mesh->vao);
-        gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.mesh->indexCount), GL_UNSIGNED_INT, nullptr);
-        stats.triangles += draw.mesh->indexCount / 3;
-        ++stats.draws;
-    }
-    timer.end(DrawPass::Lod0);
-    for (const auto& [grammar, program] : programs_->lod1) {
-        bool bound = false;
-        for (const VolumeDraw& draw : volumes) {
-            if (draw.mesh->indexCount == 0 || draw.lod0Blend >= 1.0f || draw.mesh->grammar != grammar)
-                continue;
-            if (!bound) {
-                program.use();
-                impostorTextures_.bind(program, 0);
-                program.set("shapeBase", shapes_.shapeBase(grammar));
-                program.set("centralView", centralView_);
-                gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
-                gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, sphereBuffer_);
-                bound = true;
-            }
-            program.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
-            program.set("lod0Blend", draw.lod0Blend);
-            gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, draw.mesh->parameterBuffer);
-            gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, draw.mesh->elementBuffer);
-            gl::glBindVertexArray(draw.mesh->vao);
-            gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.mesh->indexCount), GL_UNSIGNED_INT, nullptr);
-            stats.triangles += draw.mesh->indexCount / 3;
-            ++stats.draws;
-        }
-    }
-    gl::glBindVertexArray(0);
-    timer.end(DrawPass::Lod1);
 }
 
 } // namespace hexlod::lod

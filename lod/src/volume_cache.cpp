@@ -5,8 +5,6 @@
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/mesh_vertex_format.h"
 
-#include <glm/common.hpp>
-
 #include <chrono>
 #include <cstring>
 
@@ -88,11 +86,7 @@ const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset) {
     }
     mesh.lastUsed = frame_;
     mesh.indexCount = uint32_t(shell.indices.size());
-    if (!shell.vertices.empty()) mesh.boundsMin = mesh.boundsMax = shell.vertices.front().position;
-    for (const render::MeshVertex& v : shell.vertices) {
-        mesh.boundsMin = glm::min(mesh.boundsMin, v.position);
-        mesh.boundsMax = glm::max(mesh.boundsMax, v.position);
-    }
+    render::vertexBounds(shell.vertices, mesh.boundsMin, mesh.boundsMax);
     mesh.bytes += shell.byteSize();
     mesh.vertexBuffer = storage(shell.vertices.data(), shell.vertices.size() * sizeof(render::MeshVertex));
     mesh.indexBuffer = storage(shell.indices.data(), shell.indices.size() * sizeof(uint32_t));

@@ -58,15 +58,18 @@ glm::vec4 unpackRgba(uint32_t rgba) {
            255.0f;
 }
 
-void finalizeMesh(TerminalMesh& mesh) {
-    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-    for (const MeshVertex& v : mesh.vertices) {
+void vertexBounds(const std::vector<MeshVertex>& vertices, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(std::numeric_limits<float>::max());
+    hi = glm::vec3(std::numeric_limits<float>::lowest());
+    for (const MeshVertex& v : vertices) {
         lo = glm::min(lo, v.position);
         hi = glm::max(hi, v.position);
     }
-    if (mesh.vertices.empty()) lo = hi = glm::vec3(0.0f);
-    mesh.boundsMin = lo;
-    mesh.boundsMax = hi;
+}
+
+void finalizeMesh(TerminalMesh& mesh) {
+    vertexBounds(mesh.vertices, mesh.boundsMin, mesh.boundsMax);
+    if (mesh.vertices.empty()) mesh.boundsMin = mesh.boundsMax = glm::vec3(0.0f);
     const uint64_t h =
         hashBytes(0x6d657368ull, mesh.vertices.data(), mesh.vertices.size() * sizeof(MeshVertex));
     mesh.contentHash = hashBytes(h, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));

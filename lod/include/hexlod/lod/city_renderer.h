@@ -147,6 +147,9 @@ private:
     // street level most of the city stands behind the street's walls.
     void drawVolumeRings(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,
                          double nearPlane, double farPlane, FrameStats& stats, PassTimer& timer);
+    // Whether the tiles hide the batch's box: its mesh's bounds when resident, else its cell's.
+    bool volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera, const shared::CullFrame& occlusion,
+                      const std::vector<float>& tiles) const;
     void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats,
                      PassTimer& timer);
 

@@ -59,7 +59,11 @@ struct TerminalMesh {
 uint32_t packRgba(float r, float g, float b, float a = 1.0f);
 glm::vec4 unpackRgba(uint32_t rgba);
 
-// Recomputes boundsMin/boundsMax and contentHash from the vertices and indices.
+// The bounds of the vertices' positions; with no vertex, lo > hi.
+void vertexBounds(const std::vector<MeshVertex>& vertices, glm::vec3& lo, glm::vec3& hi);
+
+// Recomputes boundsMin/boundsMax (zero with no vertex) and contentHash from the vertices and
+// indices.
 void finalizeMesh(TerminalMesh& mesh);
 
 // The nominal size of a declared shape: (width, height, depthRatio × min(width, height)).

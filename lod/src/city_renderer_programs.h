@@ -1,0 +1,17 @@
+// The frame's shader programs, shared by the files that implement CityRenderer.
+#pragma once
+
+#include "hexlod/lod/city_renderer.h"
+#include "hexlod/render/shader_program.h"
+
+#include <cstdint>
+#include <map>
+
+namespace hexlod::lod {
+
+struct CityRenderer::Programs {
+    render::ShaderProgram lod4, impostor, impostorWall, volume; // impostor: LOD3 ray-cast; impostorWall: LOD2
+    std::map<uint32_t, render::ShaderProgram> lod1;             // per building grammar with buildings
+};
+
+} // namespace hexlod::lod

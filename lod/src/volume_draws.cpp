@@ -1,0 +1,100 @@
+// The frame's base volumes (LOD0, LOD1 and the shells under terminal sets), ring by ring.
+#include "city_renderer_programs.h"
+#include "hexlod/lod/cull_inputs.h"
+#include "hexlod/lod/occlusion_tests.h"
+#include "hexlod/render/gl_api.h"
+
+namespace hexlod::lod {
+
+void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,
+                                   double nearPlane, double farPlane, FrameStats& stats, PassTimer& timer) {
+    shared::CullFrame occlusion{};
+    setOcclusion(occlusion, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
+                 options_.height, depthTiles_.columns(), depthTiles_.rows(), kDepthTileSize);
+    const bool test = options_.dropHidden && depthTiles_.valid();
+    std::vector<float> tiles;
+    bool drawnSinceTiles = false; // the tiles are built again only after more was drawn
+    for (uint8_t ring = 0; ring < kVolumeRings; ++ring) {
+        std::vector<VolumeDraw> draws;
+        for (const VolumeDraw& draw : volumes)
+            if (draw.ring == ring) draws.push_back(draw);
+        if (draws.empty()) continue;
+        if (test && (drawnSinceTiles || !tiles.empty())) {
+            if (drawnSinceTiles) {
+                depthTiles_.build(target_.depthTexture());
+                tiles = depthTiles_.read();
+                drawnSinceTiles = false;
+            }
+            std::erase_if(draws, [&](const VolumeDraw& draw) {
+                const bool hidden = volumeHidden(draw, pose.position, occlusion, tiles);
+                stats.volumesOccluded += hidden;
+                return hidden;
+            });
+            timer.restart(); // the tiles belong to no pass
+        }
+        for (VolumeDraw& draw : draws) draw.mesh = &volumes_.acquire(draw.batch, draw.inset);
+        drawVolumes(draws, pose.position, stats, timer);
+        drawnSinceTiles = drawnSinceTiles || !draws.empty();
+    }
+}
+
+bool CityRenderer::volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera,
+                                const shared::CullFrame& occlusion, const std::vector<float>& tiles) const {
+    glm::vec3 lo, hi;
+    if (draw.mesh) {
+        const glm::vec3 origin(draw.mesh->cellOrigin - camera);
+        lo = origin + draw.mesh->boundsMin, hi = origin + draw.mesh->boundsMax;
+    } else {
+        // Not built yet: the cell's bounds, which the scheduler's frustum test already trusts
+        // to hold the cell's buildings.
+        const cells::CellBounds* cell = catalog_.index().boundsOf(catalog_.batch(draw.batch).cell);
+        if (!cell) return false;
+        lo = glm::vec3(glm::dvec3(cell->lo, cell->zMin) - camera);
+        hi = glm::vec3(glm::dvec3(cell->hi, cell->zMax) - camera);
+    }
+    return tilesHideBox(occlusion, &tiles, lo, hi);
+}
+
+void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
+                               FrameStats& stats, PassTimer& timer) {
+    // LOD0 first with one program, then LOD1 grammar by grammar.
+    programs_->volume.use();
+    for (const VolumeDraw& draw : volumes) {
+        if (draw.mesh->indexCount == 0 || draw.lod0Blend < 1.0f) continue;
+        programs_->volume.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
+        programs_->volume.set("texturedWalls", uint32_t(draw.textured));
+        gl::glBindVertexArray(draw.mesh->vao);
+        gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.mesh->indexCount), GL_UNSIGNED_INT, nullptr);
+        stats.triangles += draw.mesh->indexCount / 3;
+        ++stats.draws;
+    }
+    timer.end(DrawPass::Lod0);
+    for (const auto& [grammar, program] : programs_->lod1) {
+        bool bound = false;
+        for (const VolumeDraw& draw : volumes) {
+            if (draw.mesh->indexCount == 0 || draw.lod0Blend >= 1.0f || draw.mesh->grammar != grammar)
+                continue;
+            if (!bound) {
+                program.use();
+                impostorTextures_.bind(program, 0);
+                program.set("shapeBase", shapes_.shapeBase(grammar));
+                program.set("centralView", centralView_);
+                gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
+                gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, sphereBuffer_);
+                bound = true;
+            }
+            program.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
+            program.set("lod0Blend", draw.lod0Blend);
+            gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, draw.mesh->parameterBuffer);
+            gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, draw.mesh->elementBuffer);
+            gl::glBindVertexArray(draw.mesh->vao);
+            gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.mesh->indexCount), GL_UNSIGNED_INT, nullptr);
+            stats.triangles += draw.mesh->indexCount / 3;
+            ++stats.draws;
+        }
+    }
+    gl::glBindVertexArray(0);
+    timer.end(DrawPass::Lod1);
+}
+
+} // namespace hexlod::lod
