@@ -39,6 +39,31 @@ std::string speciesName(const scene::BuiltScene& scene, const scene::GrammarBuil
     return "species" + std::to_string(ordinal);
 }
 
+// Loads the atlas of `geometry` under `shape.name` and `key` from the store, or bakes (and
+// stores) it. False when the bake fails: `shape.note` says why.
+bool bakeOrLoad(impostor::ImpostorBaker& baker, impostor::ImpostorStore* store,
+                const impostor::BakeGeometry& geometry, uint64_t key, const impostor::ViewLayout& layout,
+                impostor::ImpostorAtlas& atlas, BakedShapeReport& shape) {
+    const impostor::StoreLookup found =
+        store ? store->load(shape.name, key, layout, atlas, shape.note) : impostor::StoreLookup::Missing;
+    if (found == impostor::StoreLookup::Loaded) {
+        shape.outcome = BakeOutcome::Loaded;
+        shape.fileBytes = std::filesystem::file_size(store->pathFor(shape.name, key));
+    } else {
+        std::string bakeError;
+        if (!baker.bake(geometry, layout, atlas, bakeError)) {
+            shape.note = "not baked: " + bakeError;
+            return false;
+        }
+        atlas.shape = shape.name;
+        atlas.contentKey = key;
+        shape.outcome = found == impostor::StoreLookup::Corrupt ? BakeOutcome::Rebaked : BakeOutcome::Baked;
+        if (store && !store->save(atlas, shape.fileBytes, bakeError)) shape.note = "not stored: " + bakeError;
+    }
+    shape.gpuBytes = atlas.byteSize();
+    return true;
+}
+
 } // namespace
 
 std::string SceneImpostorReport::summary() const {
@@ -172,28 +197,13 @@ bool bakeSceneImpostors(const scene::BuiltScene& scene, const render::TerminalMe
             continue;
         }
         impostor::ImpostorAtlas atlas;
-        impostor::StoreLookup found =
-            store ? store->load(item.name, key, layout, atlas, shape.note) : impostor::StoreLookup::Missing;
-        if (found == impostor::StoreLookup::Loaded) {
-            shape.outcome = BakeOutcome::Loaded;
-            shape.fileBytes = std::filesystem::file_size(store->pathFor(item.name, key));
-        } else {
-            std::string bakeError;
-            if (!baker.bake(geometry, layout, atlas, bakeError)) {
-                shape.note = "not baked: " + bakeError;
-                report.shapes.push_back(shape);
-                if (options.progress) options.progress(i + 1, items.size(), item.name);
-                continue;
-            }
-            atlas.shape = item.name;
-            atlas.contentKey = key;
-            shape.outcome =
-                found == impostor::StoreLookup::Corrupt ? BakeOutcome::Rebaked : BakeOutcome::Baked;
-            if (store && !store->save(atlas, shape.fileBytes, bakeError))
-                shape.note = "not stored: " + bakeError;
-        }
-        shape.gpuBytes = atlas.byteSize();
+        const bool made = bakeOrLoad(baker, store ? &*store : nullptr, geometry, key, layout, atlas, shape);
         shape.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - shapeStart).count();
+        if (!made) {
+            report.shapes.push_back(shape);
+            if (options.progress) options.progress(i + 1, items.size(), item.name);
+            continue;
+        }
         report.fileBytes += shape.fileBytes;
         report.gpuBytes += shape.gpuBytes;
         if (tree) {
@@ -209,6 +219,24 @@ bool bakeSceneImpostors(const scene::BuiltScene& scene, const render::TerminalMe
     }
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return true;
+}
+
+bool bakeTreeSpecies(impostor::ImpostorBaker& baker, const TreeSpeciesBake& species,
+                     const render::TerminalMeshLibrary& meshes, const SceneImpostorOptions& options,
+                     impostor::ImpostorAtlas& atlas, BakedShapeReport& report) {
+    const auto start = std::chrono::steady_clock::now();
+    report = {};
+    report.name = "tree:" + species.name;
+    report.grammar = species.grammarIndex;
+    std::optional<impostor::ImpostorStore> store;
+    if (!options.storeDirectory.empty()) store.emplace(options.storeDirectory);
+    const impostor::BakeGeometry geometry =
+        treeGeometry(*species.grammar, species.parameters, species.seed, meshes, species.grammarIndex);
+    const uint64_t key = impostor::bakeKey(geometry.hash, glm::vec3(1.0f), options.treeLayout);
+    const bool made =
+        bakeOrLoad(baker, store ? &*store : nullptr, geometry, key, options.treeLayout, atlas, report);
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return made;
 }
 
 } // namespace hexlod::lod

@@ -63,6 +63,23 @@ bool bakeSceneImpostors(const scene::BuiltScene& scene, const render::TerminalMe
                         const SceneImpostorOptions& options, SceneImpostors& out, SceneImpostorReport& report,
                         std::string& error);
 
+// One tree species: the trees of a tree grammar whose parameters are exactly these values.
+struct TreeSpeciesBake {
+    const grammar::CompiledGrammar* grammar = nullptr;
+    uint32_t grammarIndex = 0; // scene order: building grammars, then tree grammars
+    std::vector<float> parameters;
+    uint64_t seed = 0; // the scene's
+    std::string name;  // the atlas is stored as "tree:<name>"
+};
+
+// Bakes one species' impostor on options.treeLayout, or loads it from options' store, with the
+// same key bakeSceneImpostors gives it: the service bakes a species this way when an edit gives
+// trees values no species had. Needs a current GL context and an initialised baker. False when
+// the bake fails; `report.note` says why.
+bool bakeTreeSpecies(impostor::ImpostorBaker& baker, const TreeSpeciesBake& species,
+                     const render::TerminalMeshLibrary& meshes, const SceneImpostorOptions& options,
+                     impostor::ImpostorAtlas& atlas, BakedShapeReport& report);
+
 // The geometry of one tree of a species: its terminal set expanded at the origin, every
 // terminal's mesh placed in tree space (x east, y north, z up, the trunk base at the origin).
 impostor::BakeGeometry treeGeometry(const grammar::CompiledGrammar& grammar,
