@@ -123,10 +123,11 @@ int runServeCommand(ServeOptions o) {
         return 1;
     }
 
-    server::ShapeAssets assets = service->withCatalog(
+    ServeAssets assets = service->withCatalog(
         [&](const cells::BatchCatalog& catalog) { return buildShapeAssets(catalog, assetSetup); });
-    for (const std::string& line : assets.notes) std::cerr << "hexlod serve: " << line << "\n";
-    service->attachShapeAssets(std::move(assets));
+    for (const std::string& line : assets.shapes.notes) std::cerr << "hexlod serve: " << line << "\n";
+    service->attachShapeAssets(std::move(assets.shapes));
+    if (assets.bakery) service->attachSpeciesBakery(std::move(assets.bakery));
 
     server::Server httpServer(*service, serverOptions);
     if (!httpServer.start(error)) {

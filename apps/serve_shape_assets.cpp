@@ -1,5 +1,6 @@
 #include "serve_shape_assets.h"
 
+#include "serve_species_bakery.h"
 #include "shape_mesh_glb.h"
 
 #include "hexlod/render/image_io.h"
@@ -57,28 +58,6 @@ AssetBytes readFile(const std::string& path) {
     return share(std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {}));
 }
 
-// One baked atlas as served files: PNGs encoded here, the EXR read back from the store.
-bool impostorAsset(const impostor::ImpostorAtlas& atlas, uint32_t layer,
-                   const std::optional<impostor::ImpostorStore>& store, server::ImpostorAsset& asset,
-                   std::string& error) {
-    asset.key = atlas.contentKey;
-    asset.layer = layer;
-    asset.centre = array3(atlas.centre);
-    asset.radius = atlas.radius;
-    asset.boundsMin = array3(atlas.boundsMin);
-    asset.boundsMax = array3(atlas.boundsMax);
-    std::vector<uint8_t> albedo, normal;
-    if (!render::encodePng(atlas.albedo, render::PngTransfer::Srgb, albedo, error) ||
-        !render::encodePng(normalDepthImage(atlas.normalDepth), render::PngTransfer::Data, normal, error)) {
-        error = atlas.shape + ": " + error;
-        return false;
-    }
-    asset.albedoPng = share(std::move(albedo));
-    asset.normalPng = share(std::move(normal));
-    if (store) asset.exr = readFile(store->pathFor(atlas.shape, atlas.contentKey));
-    return true;
-}
-
 // The facade impostors' files, per (grammar, shape), and the tree species' files. False with a
 // reason when one cannot be encoded.
 bool addImpostors(const lod::SceneImpostors& baked, const std::string& storeDirectory,
@@ -111,7 +90,43 @@ bool addImpostors(const lod::SceneImpostors& baked, const std::string& storeDire
     return true;
 }
 
+// Species for edited trees are baked later on the same layout and store, from copies of the
+// tree grammars (edits change parameters, never a grammar) and the meshes of the start.
+std::unique_ptr<server::SpeciesBakery> speciesBakery(const cells::BatchCatalog& catalog,
+                                                     std::unique_ptr<render::TerminalMeshLibrary> library,
+                                                     const ServeAssetSetup& setup,
+                                                     const lod::SceneImpostorOptions& options) {
+    std::vector<std::optional<grammar::CompiledGrammar>> grammars(catalog.index().grammarCount());
+    for (uint32_t g = 0; g < grammars.size(); ++g)
+        if (catalog.index().isTreeGrammar(g)) grammars[g] = catalog.grammar(g).grammar;
+    lod::SceneImpostorOptions bakeOptions = options;
+    bakeOptions.progress = nullptr; // no progress bar from a background thread
+    return std::make_unique<ServeSpeciesBakery>(std::move(grammars), catalog.scene().config.seed,
+                                                std::move(library), setup.render.backend, bakeOptions);
+}
+
 } // namespace
+
+bool impostorAsset(const impostor::ImpostorAtlas& atlas, uint32_t layer,
+                   const std::optional<impostor::ImpostorStore>& store, server::ImpostorAsset& asset,
+                   std::string& error) {
+    asset.key = atlas.contentKey;
+    asset.layer = layer;
+    asset.centre = array3(atlas.centre);
+    asset.radius = atlas.radius;
+    asset.boundsMin = array3(atlas.boundsMin);
+    asset.boundsMax = array3(atlas.boundsMax);
+    std::vector<uint8_t> albedo, normal;
+    if (!render::encodePng(atlas.albedo, render::PngTransfer::Srgb, albedo, error) ||
+        !render::encodePng(normalDepthImage(atlas.normalDepth), render::PngTransfer::Data, normal, error)) {
+        error = atlas.shape + ": " + error;
+        return false;
+    }
+    asset.albedoPng = share(std::move(albedo));
+    asset.normalPng = share(std::move(normal));
+    if (store) asset.exr = readFile(store->pathFor(atlas.shape, atlas.contentKey));
+    return true;
+}
 
 nlohmann::json impostorLayoutJson(const impostor::ViewLayout& layout) {
     nlohmann::json views = nlohmann::json::array();
@@ -138,10 +153,11 @@ nlohmann::json impostorLayoutJson(const impostor::ViewLayout& layout) {
             {"views", views}};
 }
 
-server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const ServeAssetSetup& setup) {
-    server::ShapeAssets assets;
+ServeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const ServeAssetSetup& setup) {
+    ServeAssets out;
+    server::ShapeAssets& assets = out.shapes;
     const auto start = std::chrono::steady_clock::now();
-    const std::unique_ptr<render::TerminalMeshLibrary> library = sceneMeshLibrary(catalog);
+    std::unique_ptr<render::TerminalMeshLibrary> library = sceneMeshLibrary(catalog);
     for (const std::string& note : library->notes()) assets.notes.push_back("meshes: " + note);
     const size_t distinct = addMeshes(*library, assets);
     const uint32_t grammars = catalog.index().grammarCount();
@@ -150,7 +166,7 @@ server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const S
                            ", unit scope space");
     if (!setup.render.impostors) {
         assets.notes.push_back("impostors (EXR, PNG): off (--no-impostors)");
-        return assets;
+        return out;
     }
     bool members = false;
     for (const auto* grammars : {&catalog.scene().buildingGrammars, &catalog.scene().treeGrammars})
@@ -158,13 +174,13 @@ server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const S
     if (!members) {
         // Without buildings or trees there is nothing to bake, so no GL context is made either.
         assets.notes.push_back("impostors (EXR, PNG): none needed (the scene has no buildings and no trees)");
-        return assets;
+        return out;
     }
     render::GlContextResult gl = render::createGlContext({setup.render.backend, true});
     if (!gl.context) {
         assets.notes.push_back("impostors (EXR, PNG): not served (no GL context to bake them: " + gl.error() +
                                ")");
-        return assets;
+        return out;
     }
     assets.notes.push_back(glContextNote(*gl.context) + ", for the impostor bake only");
     lod::SceneImpostorOptions options = sceneImpostorOptions(setup.render);
@@ -181,7 +197,7 @@ server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const S
     if (!ok) {
         assets.impostors.clear();
         assets.notes.push_back("impostors (EXR, PNG): not served (" + error + ")");
-        return assets;
+        return out;
     }
     assets.impostorLayout = impostorLayoutJson(options.facadeLayout);
     if (assets.speciesServed) assets.speciesLayout = impostorLayoutJson(options.treeLayout);
@@ -193,7 +209,8 @@ server::ShapeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const S
     assets.notes.push_back(
         "impostors (EXR, PNG): facade shapes and " + trees + "; " + std::to_string(assets.byteSize() >> 10) +
         " KiB of meshes and impostor files, built in " + std::to_string(int(seconds * 1000.0)) + " ms");
-    return assets;
+    if (assets.speciesServed) out.bakery = speciesBakery(catalog, std::move(library), setup, options);
+    return out;
 }
 
 } // namespace hexlod::apps

@@ -24,14 +24,24 @@ void EventHub::setBaseline(uint64_t seq) {
 }
 
 void EventHub::publish(uint64_t id, const std::string& event, const std::string& json) {
+    send(id, event, json);
+}
+
+void EventHub::notify(const std::string& event, const std::string& json) {
+    send(std::nullopt, event, json);
+}
+
+void EventHub::send(std::optional<uint64_t> id, const std::string& event, const std::string& json) {
     const EventFrame frame = std::make_shared<const std::string>(formatFrame(id, event, json));
     std::vector<std::shared_ptr<EventSubscriber>> overflowed;
     {
         std::lock_guard lock(mutex_);
         ++stats_.published;
-        lastId_ = id;
-        recent_.emplace_back(id, frame);
-        while (recent_.size() > retained_) recent_.pop_front();
+        if (id) {
+            lastId_ = *id;
+            recent_.emplace_back(*id, frame);
+            while (recent_.size() > retained_) recent_.pop_front();
+        }
         for (auto it = subscribers_.begin(); it != subscribers_.end();) {
             if ((*it)->deliver(frame)) {
                 ++stats_.delivered;

@@ -99,6 +99,7 @@ std::unique_ptr<SceneService> SceneService::create(scene::BuiltScene scene, cach
 }
 
 void SceneService::stop() {
+    bakery_.reset(); // its thread calls back into the service: it goes first
     pool_.stop();
     events_.closeAll();
 }
@@ -260,6 +261,7 @@ EditOutcome SceneService::edit(const EditSpec& spec) {
     undoStack_.push_back(history_.size() - 1);
     Json reply = changeReply("edit", entry.seq, std::move(changed));
     events_.publish(entry.seq, "edit", jsonText(reply));
+    requestMissingSpecies(result.changed);
     metrics_.recordEdit("edit", "ok");
     return {200, std::move(reply)};
 }
@@ -295,6 +297,7 @@ EditOutcome SceneService::undo() {
     Json reply = changeReply("undo", entry.seq, std::move(changed));
     reply["undoes"] = entry.undoes;
     events_.publish(entry.seq, "undo", jsonText(reply));
+    requestMissingSpecies(result.changed);
     metrics_.recordEdit("undo", "ok");
     return {200, std::move(reply)};
 }
@@ -368,6 +371,7 @@ void SceneService::renderMetrics(PrometheusText& out) const {
     out.sample("hexlod_sse_dropped_total", {}, static_cast<double>(hub.dropped));
     out.family("hexlod_journal_seq", "gauge", "Sequence number of the last journal entry.");
     out.sample("hexlod_journal_seq", {}, static_cast<double>(lastSeq()));
+    renderSpeciesMetrics(out);
 }
 
 } // namespace hexlod::server

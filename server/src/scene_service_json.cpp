@@ -50,6 +50,10 @@ template <typename UrlOf> Json impostorJson(const ImpostorAsset& impostor, const
             {"layer", impostor.layer}};
 }
 
+std::string speciesUrl(uint32_t species, uint64_t key, const char* suffix) {
+    return "/api/v1/tree-impostors/" + std::to_string(species) + "/" + cache::hexDigest(key) + suffix;
+}
+
 } // namespace
 
 std::string SceneService::meshUrl(uint32_t grammar, uint32_t shape) const {
@@ -93,33 +97,42 @@ Json SceneService::shapeJson(uint32_t grammar, uint32_t shape) const {
 }
 
 std::string SceneService::speciesImpostorUrl(uint32_t species, const char* suffix) const {
-    const SpeciesAsset* asset = assets_.speciesAt(species);
+    const std::optional<SpeciesAsset> asset = this->species(species);
     if (!asset) return {};
-    return "/api/v1/tree-impostors/" + std::to_string(species) + "/" + cache::hexDigest(asset->impostor.key) +
-           suffix;
+    return speciesUrl(species, asset->impostor.key, suffix);
+}
+
+// One species as /api/v1/scene lists it and its event announces it.
+Json SceneService::speciesEntryJson(uint32_t index) const {
+    const SpeciesAsset& species = species_[index];
+    Json parameters = Json::array();
+    for (const float value : species.parameters) parameters.push_back(decimal(value));
+    return {{"index", index},
+            {"name", species.name},
+            {"grammar", species.grammar},
+            {"parameters", parameters},
+            {"impostor", impostorJson(species.impostor, [&](const char* suffix) {
+                 return speciesUrl(index, species.impostor.key, suffix);
+             })}};
 }
 
 // The species whose billboards the service serves, in the order of their impostors' layers.
 Json SceneService::speciesJson() const {
     Json out = Json::array();
-    for (uint32_t s = 0; s < assets_.species.size(); ++s) {
-        const SpeciesAsset& species = assets_.species[s];
-        Json parameters = Json::array();
-        for (const float value : species.parameters) parameters.push_back(decimal(value));
-        out.push_back({{"index", s},
-                       {"name", species.name},
-                       {"grammar", species.grammar},
-                       {"parameters", parameters},
-                       {"impostor", impostorJson(species.impostor, [&](const char* suffix) {
-                            return speciesImpostorUrl(s, suffix);
-                        })}});
-    }
+    for (uint32_t s = 0; s < species_.size(); ++s) out.push_back(speciesEntryJson(s));
     return out;
 }
 
 void SceneService::attachShapeAssets(ShapeAssets assets) {
     assets_ = std::move(assets);
     assetsAttached_ = true;
+    {
+        std::lock_guard lock(speciesMutex_);
+        species_ = std::move(assets_.species); // from here on the service's, and growing
+        assets_.species.clear();
+        for (const SpeciesAsset& s : species_)
+            speciesStates_[{s.grammar, s.parameters}] = SpeciesState::Served;
+    }
     staticSummary_ = staticSummary();
 }
 
@@ -178,7 +191,7 @@ Json SceneService::staticSummary() const {
            "cells at any distance)"}}},
         {"attributions", scene.attributions},
         {"impostor_layout", assets_.impostorLayout},
-        {"tree_species", speciesJson()},
+        {"tree_species", nullptr}, // summary() fills it: edits add species
         {"tree_impostor_layout", assets_.speciesLayout},
         {"formats",
          {{"terminal_set", grammar::kTerminalSetFormatVersion},
@@ -226,6 +239,10 @@ Json SceneService::summary() const {
                           {"edits", edits},
                           {"undos", undos},
                           {"undo_available", !undoStack_.empty()}};
+    }
+    {
+        std::lock_guard lock(speciesMutex_);
+        out["tree_species"] = speciesJson();
     }
     out["edits"] = out["journal"]["entries"];
     out["index_etag"] = stateEtag();
@@ -334,7 +351,8 @@ Json SceneService::history(uint64_t since, size_t limit) const {
 }
 
 Json SceneService::hello() const {
-    return {{"seq", lastSeq()}, {"index_etag", stateEtag()}};
+    // A client that missed a "species" event (they are not replayed) sees the count grow.
+    return {{"seq", lastSeq()}, {"index_etag", stateEtag()}, {"tree_species", speciesCount()}};
 }
 
 } // namespace hexlod::server

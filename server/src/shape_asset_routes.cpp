@@ -128,9 +128,9 @@ void ServiceApi::speciesImpostor(const RequestContext& c, Respond respond) const
     if (!key)
         return respond(
             errorReply(400, "expected <16 hex digits of the key><suffix>, got '" + std::string(file) + "'"));
-    const SpeciesAsset* asset = assets.speciesAt(*species);
+    const std::optional<SpeciesAsset> asset = service_.species(*species);
     if (!asset)
-        return respond(errorReply(404, "the scene has " + std::to_string(assets.species.size()) +
+        return respond(errorReply(404, "the scene has " + std::to_string(service_.speciesCount()) +
                                            " tree species with impostors; there is no species " +
                                            std::to_string(*species)));
     const std::string suffix(file.substr(16));

@@ -26,10 +26,6 @@ const ImpostorAsset* ShapeAssets::impostor(uint32_t grammar, uint32_t shape) con
     return lookup(impostors, grammar, shape);
 }
 
-const SpeciesAsset* ShapeAssets::speciesAt(uint32_t index) const {
-    return index < species.size() ? &species[index] : nullptr;
-}
-
 uint64_t ShapeAssets::byteSize() const {
     uint64_t bytes = 0;
     std::unordered_set<const void*> seen;

@@ -4,6 +4,7 @@
 // tree species with trees, PNGs of the atlas's size that agree with the EXR the store holds, and
 // a store reused on the next start.
 // Without GL (--no-impostors) the meshes are still served and the notes say why impostors are not.
+// An edit that gives trees new values makes the running service bake species for them.
 #include "serve_process.h"
 
 #include "../server/live_server.h"
@@ -16,6 +17,7 @@
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <csignal>
 #include <fstream>
 #include <map>
@@ -42,6 +44,14 @@ std::vector<std::string> serveArguments(const TemporaryFolder& folder, const std
         args.push_back(a);
     args.push_back(folder.file("store"));
     return args;
+}
+
+// A park of 30 trees of the shipped species, and no building.
+std::string writeTreesOnlyScene(const TemporaryFolder& folder) {
+    SmallScene trees;
+    trees.buildings = 0;
+    trees.trees = 30;
+    return writeSmallScene(folder.path(), trees);
 }
 
 struct DecodedPng {
@@ -313,10 +323,7 @@ TEST(ServeAssetsWithoutGl, MeshesAreServedAndTheNotesSayWhyImpostorsAreNot) {
 
 TEST(ServeAssetsWithoutBuildings, TreesGetTheirSpeciesAndNoFacadeIsBaked) {
     TemporaryFolder folder;
-    SmallScene trees;
-    trees.buildings = 0;
-    trees.trees = 30;
-    const std::string scene = writeSmallScene(folder.path(), trees);
+    const std::string scene = writeTreesOnlyScene(folder);
     ServeProcess serve(serveArguments(folder, scene));
     ASSERT_TRUE(serve.waitUntilServing(std::chrono::seconds(120))) << serve.stderrText();
     http_client::Connection c("127.0.0.1", serve.port());
@@ -326,6 +333,90 @@ TEST(ServeAssetsWithoutBuildings, TreesGetTheirSpeciesAndNoFacadeIsBaked) {
     for (const Json& grammar : s["grammars"])
         for (const Json& shape : grammar["shapes"]) EXPECT_TRUE(shape["impostor"].is_null()) << shape["name"];
     EXPECT_NE(note(s, "impostors: 0 of "), "") << "no facade shape baked";
+    EXPECT_EQ(serve.stop(SIGTERM), 0);
+}
+
+// An edit that gives trees values no species has: while it runs, the service bakes one species
+// per new value set (a "species" event, without id), lists it with the exact values, serves its
+// files and counts it in the hello and the metrics. Values it serves already bake nothing: the
+// undo back to the start's values, and the same edit made again.
+TEST(ServeSpeciesForEdits, EditedTreesGetSpeciesOfTheirNewValues) {
+    TemporaryFolder folder;
+    const std::string scene = writeTreesOnlyScene(folder);
+    ServeProcess serve(serveArguments(folder, scene));
+    ASSERT_TRUE(serve.waitUntilServing(std::chrono::seconds(120))) << serve.stderrText();
+    http_client::Connection c("127.0.0.1", serve.port());
+    const Json before = Json::parse(c.get("/api/v1/scene").body);
+    const size_t started = before["tree_species"].size();
+    ASSERT_GT(started, 0u);
+    const scene::BuiltScene built = buildSmallScene(scene);
+    ASSERT_EQ(built.treeGrammars.size(), 1u);
+    const uint32_t grammar = uint32_t(built.buildingGrammars.size());
+    const std::vector<grammar::ParameterInfo>& params = built.treeGrammars[0].grammar.params;
+    const size_t trunk =
+        size_t(std::find_if(params.begin(), params.end(),
+                            [](const grammar::ParameterInfo& p) { return p.name == "trunk_h"; }) -
+               params.begin());
+    ASSERT_LT(trunk, params.size());
+    std::set<std::vector<float>> expected;
+    for (const grammar::BuildingInput& tree : built.treeGrammars[0].buildings) {
+        std::vector<float> values = tree.parameters;
+        values[trunk] = 4.25f;
+        expected.insert(values);
+    }
+
+    http_client::EventStreamReader events("127.0.0.1", serve.port(), "/api/v1/events");
+    const auto hello = events.next(std::chrono::seconds(5));
+    ASSERT_TRUE(hello);
+    EXPECT_EQ(Json::parse(hello->data)["tree_species"], started);
+    const std::string edit =
+        R"({"selector":{"grammar":)" + std::to_string(grammar) + R"(},"params":{"trunk_h":4.25}})";
+    ASSERT_EQ(c.post("/api/v1/edits", edit).status, 200);
+    const auto edited = events.next(std::chrono::seconds(5));
+    ASSERT_TRUE(edited);
+    EXPECT_EQ(edited->event, "edit");
+
+    std::set<std::vector<float>> baked;
+    for (size_t k = 0; k < expected.size(); ++k) {
+        const auto event = events.next(std::chrono::seconds(60));
+        ASSERT_TRUE(event) << "species " << k << " of " << expected.size() << "\n" << serve.stderrText();
+        ASSERT_EQ(event->event, "species") << event->data;
+        EXPECT_EQ(event->id, "") << "not an edit: no id, not replayed";
+        const Json data = Json::parse(event->data);
+        const Json& species = data["species"];
+        EXPECT_EQ(species["index"], started + k);
+        EXPECT_EQ(data["tree_species"], started + k + 1);
+        EXPECT_EQ(species["grammar"], grammar);
+        baked.insert(species["parameters"].get<std::vector<float>>());
+        const auto albedo = c.get(species["impostor"]["albedo_url"].get<std::string>());
+        ASSERT_EQ(albedo.status, 200);
+        EXPECT_EQ(albedo.header("content-type"), "image/png");
+        const DecodedPng png = decodePng(albedo.body);
+        size_t covered = 0;
+        for (size_t i = 3; i < png.rgba.size(); i += 4) covered += png.rgba[i] > 0;
+        EXPECT_GT(covered, png.rgba.size() / 4 / 50) << "the views show the edited tree";
+    }
+    EXPECT_EQ(baked, expected) << "one species per new value set, with exactly those values";
+    const Json after = Json::parse(c.get("/api/v1/scene").body);
+    EXPECT_EQ(after["tree_species"].size(), started + expected.size());
+    EXPECT_NE(
+        c.get("/metrics")
+            .body.find("hexlod_tree_species{state=\"served\"} " + std::to_string(started + expected.size())),
+        std::string::npos);
+
+    ASSERT_EQ(c.post("/api/v1/edits/undo", "").status, 200);
+    ASSERT_EQ(c.post("/api/v1/edits", edit).status, 200);
+    for (const char* kind : {"undo", "edit"}) {
+        const auto event = events.next(std::chrono::seconds(5));
+        ASSERT_TRUE(event);
+        EXPECT_EQ(event->event, kind);
+    }
+    const auto extra = events.next(std::chrono::seconds(3));
+    EXPECT_FALSE(extra) << "nothing baked again: " << (extra ? extra->event + " " + extra->data : "");
+    http_client::EventStreamReader later("127.0.0.1", serve.port(), "/api/v1/events");
+    const auto laterHello = later.next(std::chrono::seconds(5));
+    ASSERT_TRUE(laterHello);
+    EXPECT_EQ(Json::parse(laterHello->data)["tree_species"], started + expected.size());
     EXPECT_EQ(serve.stop(SIGTERM), 0);
 }
 

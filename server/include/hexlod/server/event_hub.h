@@ -39,6 +39,9 @@ public:
     // Ids are edit sequence numbers; the first event after `seq` will be seq + 1.
     void setBaseline(uint64_t seq);
     void publish(uint64_t id, const std::string& event, const std::string& json);
+    // An event without id, not retained: a notice that is not an edit, whose state a
+    // reconnecting client reads from the hello and the API instead.
+    void notify(const std::string& event, const std::string& json);
     // Sends `hello` (an event without id) first, then, with lastEventId, the retained frames
     // after it, or a "reset" event when some of them are no longer retained.
     void subscribe(const std::shared_ptr<EventSubscriber>& subscriber, std::optional<uint64_t> lastEventId,
@@ -54,6 +57,10 @@ public:
     static std::string heartbeatFrame(); // a comment line, ignored by EventSource
 
 private:
+    // Retains the frame when it has an id, hands it to every subscriber, and closes those
+    // that overflowed once the lock is released.
+    void send(std::optional<uint64_t> id, const std::string& event, const std::string& json);
+
     const size_t retained_;
     mutable std::mutex mutex_;
     std::vector<std::shared_ptr<EventSubscriber>> subscribers_;

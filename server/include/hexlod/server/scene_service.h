@@ -24,11 +24,14 @@
 #include "hexlod/server/metrics.h"
 #include "hexlod/server/payload_cache.h"
 #include "hexlod/server/shape_assets.h"
+#include "hexlod/server/species_bakery.h"
 
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <shared_mutex>
 #include <string>
@@ -110,6 +113,14 @@ public:
     std::string impostorUrl(uint32_t grammar, uint32_t shape, const char* suffix) const;
     // "/api/v1/tree-impostors/{species}/{key}" + suffix; empty when no such species is served.
     std::string speciesImpostorUrl(uint32_t species, const char* suffix) const;
+    // The served species: those of the attached assets, then those baked for edits since.
+    std::optional<SpeciesAsset> species(uint32_t index) const;
+    size_t speciesCount() const;
+    // Bakes a species for trees that an edit or undo leaves with values no served species has
+    // (species_bakery.h), at most kMaxEditedSpecies of them. Attach after the shape assets, and
+    // only when they serve species.
+    void attachSpeciesBakery(std::unique_ptr<SpeciesBakery> bakery);
+    static constexpr size_t kMaxEditedSpecies = 64;
 
     // Write side, one thread at a time.
     EditOutcome edit(const EditSpec& edit);
@@ -152,7 +163,13 @@ private:
     PayloadOutcome staleOutcome(PayloadKind kind, uint32_t batch) const;
     nlohmann::json staticSummary() const;
     nlohmann::json shapeJson(uint32_t grammar, uint32_t shape) const;
-    nlohmann::json speciesJson() const;
+    nlohmann::json speciesJson() const;                    // under speciesMutex_
+    nlohmann::json speciesEntryJson(uint32_t index) const; // under speciesMutex_
+    // Asks the bakery for every value set of the changed tree batches that no species has.
+    void requestMissingSpecies(const std::vector<cells::KeyChange>& changes);
+    void addBakedSpecies(const SpeciesRequest& request, std::optional<SpeciesAsset> asset,
+                         const std::string& error);
+    void renderSpeciesMetrics(PrometheusText& out) const;
     std::string buildIndex() const; // under stateMutex_ shared
 
     ServiceOptions options_;
@@ -187,6 +204,17 @@ private:
     mutable std::mutex failedMutex_;
     std::unordered_set<uint64_t> failedKeys_; // digests whose expansion failed: not retried
     std::atomic<uint64_t> expansions_{0};
+
+    // Tree species: the attached ones, then those baked for edits; an index is its layer.
+    mutable std::mutex speciesMutex_;
+    std::vector<SpeciesAsset> species_;
+    // (grammar, values) of every species served or being baked, and of bakes that failed (not
+    // retried): the value is its state.
+    enum class SpeciesState { Served, Baking, Failed };
+    std::map<std::pair<uint32_t, std::vector<float>>, SpeciesState> speciesStates_;
+    size_t speciesRequested_ = 0; // bakes asked for since start, against kMaxEditedSpecies
+    // Last, so that it is destroyed first: its thread calls addBakedSpecies.
+    std::unique_ptr<SpeciesBakery> bakery_;
 };
 
 } // namespace hexlod::server

@@ -4,7 +4,8 @@
 // which clients draw as the species' billboard far from the camera. They are built once before the service
 // starts serving (the app builds them with the render and lod modules, which need meshes and GL; the service
 // itself stays free of both) and never change: parameter edits do not touch a shape's mesh,
-// so every URL is content-addressed and immutable.
+// so every URL is content-addressed and immutable. Species are the one list that grows: the
+// service takes them over on attach and adds those an edit makes (species_bakery.h).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -37,7 +38,7 @@ struct ImpostorAsset {
 };
 
 // A tree species: the trees of tree grammar `grammar` whose parameters are exactly these
-// floats (an edited tree no longer matches, and is drawn from its terminals).
+// floats (an edited tree matches none until the service has baked a species for its values).
 struct SpeciesAsset {
     std::string name;
     uint32_t grammar = 0; // a tree grammar, scene order
@@ -51,15 +52,14 @@ struct ShapeAssets {
     std::vector<std::vector<std::optional<ImpostorAsset>>> impostors;
     // The facade view layout every impostor above shares (docs/protocol.md); null without any.
     nlohmann::json impostorLayout;
-    std::vector<SpeciesAsset> species;
-    nlohmann::json speciesLayout; // the full-sphere layout of every species impostor; null without
+    std::vector<SpeciesAsset> species; // moved into the service on attach
+    nlohmann::json speciesLayout;      // the full-sphere layout of every species impostor; null without
     bool meshesServed = false, impostorsServed = false, speciesServed = false;
     // What was built or left out and why, for /api/v1/scene's notes.
     std::vector<std::string> notes;
 
     const MeshAsset* mesh(uint32_t grammar, uint32_t shape) const;
     const ImpostorAsset* impostor(uint32_t grammar, uint32_t shape) const;
-    const SpeciesAsset* speciesAt(uint32_t index) const;
     uint64_t byteSize() const;
 };
 

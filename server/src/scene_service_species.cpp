@@ -1,0 +1,86 @@
+// SceneService: the tree species it serves, and baking new ones for edited trees.
+#include "hexlod/server/scene_service.h"
+
+namespace hexlod::server {
+
+std::optional<SpeciesAsset> SceneService::species(uint32_t index) const {
+    std::lock_guard lock(speciesMutex_);
+    if (index >= species_.size()) return std::nullopt;
+    return species_[index]; // a copy: the list may grow meanwhile, the bytes are shared
+}
+
+size_t SceneService::speciesCount() const {
+    std::lock_guard lock(speciesMutex_);
+    return species_.size();
+}
+
+void SceneService::attachSpeciesBakery(std::unique_ptr<SpeciesBakery> bakery) {
+    bakery_ = std::move(bakery);
+}
+
+void SceneService::requestMissingSpecies(const std::vector<cells::KeyChange>& changes) {
+    if (!bakery_ || !assets_.speciesServed) return; // a client draws no billboards then
+    std::vector<SpeciesRequest> requests;
+    {
+        std::lock_guard lock(speciesMutex_);
+        for (const cells::KeyChange& change : changes) {
+            const cells::Batch& batch = catalog_->batch(change.batch);
+            if (!catalog_->index().isTreeGrammar(batch.grammar)) continue;
+            const scene::GrammarBuildings& trees = catalog_->grammar(batch.grammar);
+            for (const uint32_t member : batch.buildings) {
+                const std::vector<float>& values = trees.buildings[member].parameters;
+                if (speciesStates_.count({batch.grammar, values})) continue;
+                // Past the cap, trees of new values stay terminals: an endless run of edits
+                // must not grow the served atlases without bound.
+                if (speciesRequested_ >= kMaxEditedSpecies) break;
+                speciesStates_[{batch.grammar, values}] = SpeciesState::Baking;
+                ++speciesRequested_;
+                requests.push_back(
+                    {batch.grammar, values, trees.name + " edited " + std::to_string(speciesRequested_)});
+            }
+        }
+    }
+    for (SpeciesRequest& request : requests) {
+        const SpeciesRequest key{request.grammar, request.parameters, {}};
+        bakery_->bake(std::move(request),
+                      [this, key](std::optional<SpeciesAsset> asset, const std::string& error) {
+                          addBakedSpecies(key, std::move(asset), error);
+                      });
+    }
+}
+
+void SceneService::addBakedSpecies(const SpeciesRequest& request, std::optional<SpeciesAsset> asset,
+                                   const std::string& error) {
+    nlohmann::json event;
+    {
+        std::lock_guard lock(speciesMutex_);
+        SpeciesState& state = speciesStates_[{request.grammar, request.parameters}];
+        if (!asset) {
+            state = SpeciesState::Failed; // not asked for again: the same values fail the same way
+            event = {{"error", error}, {"grammar", request.grammar}, {"tree_species", species_.size()}};
+        } else {
+            state = SpeciesState::Served;
+            asset->impostor.layer = uint32_t(species_.size());
+            species_.push_back(std::move(*asset));
+            event = {{"species", speciesEntryJson(uint32_t(species_.size() - 1))},
+                     {"tree_species", species_.size()}};
+        }
+    }
+    events_.notify(event.contains("species") ? "species" : "species-failed", event.dump());
+}
+
+void SceneService::renderSpeciesMetrics(PrometheusText& out) const {
+    std::map<SpeciesState, size_t> counts;
+    {
+        std::lock_guard lock(speciesMutex_);
+        for (const auto& [values, state] : speciesStates_) ++counts[state];
+    }
+    out.family("hexlod_tree_species", "gauge",
+               "Tree species by state: served, being baked for an edit, or failed to bake.");
+    for (const auto& [state, name] : {std::pair{SpeciesState::Served, "served"},
+                                      {SpeciesState::Baking, "baking"},
+                                      {SpeciesState::Failed, "failed"}})
+        out.sample("hexlod_tree_species", {{"state", name}}, static_cast<double>(counts[state]));
+}
+
+} // namespace hexlod::server
