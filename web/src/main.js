@@ -103,6 +103,13 @@ async function start() {
         },
         onReset: () => reloadIndex(),
         onStatus: (s) => (eventStatus = s),
+        onSpecies: (entry) => trees.add(entry).then((added) => added && stream(performance.now())),
+        onSpeciesCount: (count) => {
+            if (count > trees.species.length)
+                getJson('/api/v1/scene')
+                    .then((fresh) => Promise.all((fresh.tree_species ?? []).map((entry) => trees.add(entry))))
+                    .catch((e) => messages.add(`tree species: ${e.message}`));
+        },
     });
     let eventStatus = 'events: connecting';
     edits.indexSeq = index.seq;

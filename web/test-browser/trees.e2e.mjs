@@ -4,8 +4,8 @@
 // billboards must cover about the pixels the terminals cover and bring the image much closer to
 // the terminals' than no trees at all; by distance (the default) the cut must split the park's
 // batches from nearer and make every tree a billboard from farther; and after the trees are
-// edited, their batches must fall back to terminals, since no served species matches their new
-// values. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
+// edited, the service bakes species for their new values and the far trees are billboards of
+// those, changing the image. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -64,7 +64,7 @@ async function compare(page, shots) {
     }, shots);
 }
 
-test('far trees are billboards that stand for their trees, and edited trees fall back to terminals', { timeout: 240000 }, async () => {
+test('far trees are billboards that stand for their trees, and edited trees get species of their own', { timeout: 240000 }, async () => {
     assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
     fs.mkdirSync(artifacts, { recursive: true });
     const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-trees-'));
@@ -117,31 +117,46 @@ test('far trees are billboards that stand for their trees, and edited trees fall
         assert.equal(auto.state.streamer.trees.billboards, 40);
         assert.equal(auto.state.streamer.terminals[4], 0, 'no tree terminal this far out (the houses are LOD3 and LOD2)');
 
-        // Edit the trees' grammar (trees are edited by cell or grammar): no served species has
-        // the new values, so every tree batch turns to terminals, at any distance.
+        // Edit the trees' grammar (trees are edited by cell or grammar): no species baked at start
+        // has the new values. Until the service has baked theirs, the edited trees are terminals
+        // at any distance; once its species events are in, every tree is a billboard again, of
+        // its new species, at the batches' new version.
+        const editStart = Date.now();
         const edited = await page.evaluate(async () => {
             const h = window.hexlod;
             const grammar = h.scene.grammars.find((g) => g.kind === 'tree');
             await h.tuning.post({ grammar: grammar.index }, { trunk_h: 4.25 });
-            return { grammar: grammar.index };
+            return { grammar: grammar.index, trunk: grammar.parameters.findIndex((p) => p.name === 'trunk_h') };
         });
-        await page.waitForFunction(() => window.hexlod.state().streamer.trees.edited === 40 && window.hexlod.idle(), null, { timeout: 90000 });
-        const after = await page.evaluate((e) => {
-            const h = window.hexlod;
-            const drawn = h.streamer.cells.flatMap((c) => c.batches.filter((b) => b.grammar === e.grammar).map((b) => b.drawn));
-            return { drawn, state: h.state() };
-        }, edited);
-        for (const d of after.drawn) {
-            assert.equal(d.kind, 'terminal');
-            assert.equal(d.version, 2);
-        }
-        assert.equal(after.state.streamer.trees.billboards, 0);
+        await page.waitForFunction(
+            (e) => {
+                const h = window.hexlod;
+                const trees = h.state().streamer.trees;
+                const drawn = h.streamer.cells.flatMap((c) => c.batches.filter((b) => b.grammar === e.grammar).map((b) => b.drawn));
+                return h.idle() && trees.billboards === 40 && trees.edited === 0 && drawn.every((d) => d?.kind === 'billboards' && d.version === 2);
+            },
+            edited,
+            { timeout: 90000 },
+        );
+        const rebillboarded = (Date.now() - editStart) / 1000;
+        const after = await page.evaluate(() => window.hexlod.state());
+        const rebaked = await (await fetch(`${base}api/v1/scene`)).json();
+        const added = rebaked.tree_species.slice(scene.tree_species.length);
+        assert.ok(added.length > 0, 'the service baked species for the edited trees');
+        for (const s of added) assert.equal(s.parameters[edited.trunk], 4.25, `species ${s.name}`);
+        assert.equal(after.trees, `${rebaked.tree_species.length} species`);
+        await page.waitForTimeout(500);
+        const editedImage = (await page.screenshot({ timeout: 60000 })).toString('base64');
+        // The pixels the edit changed against the view before it (compare's first count).
+        const changed = (await compare(page, { none: auto.image, terminals: editedImage, billboards: editedImage })).terminalPixels;
+        assert.ok(changed > 50, `the edited trees' billboards change ${changed} pixels`);
         await page.screenshot({ path: path.join(artifacts, 'trees-edited.png'), timeout: 60000 });
         assert.deepEqual(pageErrors, []);
         console.log(
             `web.browser trees: billboards cover ${coverage.toFixed(2)} of the terminals' ${c.terminalPixels} pixels (overlap ${c.overlap.toFixed(2)}), ` +
                 `PSNR against terminals ${c.psnrBillboards.toFixed(2)} dB (no trees: ${c.psnrNone.toFixed(2)} dB); ` +
-                `first view ${terminals.state.loadTime?.toFixed(2)} s with terminals, ${billboards.state.loadTime?.toFixed(2)} s with billboards`,
+                `first view ${terminals.state.loadTime?.toFixed(2)} s with terminals, ${billboards.state.loadTime?.toFixed(2)} s with billboards; ` +
+                `after the edit, ${added.length} species baked and every tree a billboard again in ${rebillboarded.toFixed(2)} s, ${changed} pixels changed`,
         );
     } finally {
         await browser?.close();

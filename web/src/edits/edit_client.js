@@ -3,14 +3,18 @@
 // edit reply and its event carry the same `changed` list (new key, version and URLs per
 // batch); whichever comes first is applied and the other is a no-op, since a batch only ever
 // moves to a higher version. A `reset` event, or a `hello` whose seq differs from the index's,
-// means events were missed: the cell index is fetched again.
+// means events were missed: the cell index is fetched again. A `species` event (no id, not
+// replayed) announces a tree species the service baked for edited trees; the hello's species
+// count tells a reconnecting client whether it missed one.
 import { postJson } from '../api.js';
 
 export class EditClient {
-    constructor({ onChanged, onReset, onStatus }) {
+    constructor({ onChanged, onReset, onStatus, onSpecies, onSpeciesCount }) {
         this.onChanged = onChanged;
         this.onReset = onReset;
         this.onStatus = onStatus;
+        this.onSpecies = onSpecies;
+        this.onSpeciesCount = onSpeciesCount;
         this.indexSeq = 0;
         this.lastEvent = null;
         this.posting = 0; // edits and undos in flight
@@ -24,7 +28,9 @@ export class EditClient {
             const hello = JSON.parse(e.data);
             this.onStatus('events: connected');
             if (hello.seq !== this.indexSeq) this.onReset();
+            if (hello.tree_species !== undefined) this.onSpeciesCount?.(hello.tree_species);
         });
+        this.source.addEventListener('species', (e) => this.onSpecies?.(JSON.parse(e.data).species));
         for (const type of ['edit', 'undo']) {
             this.source.addEventListener(type, (e) => {
                 const event = JSON.parse(e.data);

@@ -3,9 +3,9 @@
 // impostor of its species, found by its exact parameter values. Per tree, as the native tree
 // cut: a tree nearer the camera than the terminal distance is drawn from the batch's terminals
 // (`isBillboard` false: TerminalBatch shows its terminals), a farther one as its billboard. A
-// tree whose values match no served species (it was edited since the service baked them) is
-// never a billboard: `unmatched` counts them, and the streamer then draws the batch's terminals
-// at any distance.
+// tree whose values match no served species (it was edited, and the service has not baked its
+// species yet) is never a billboard: `unmatched` counts them, and the streamer then draws the
+// batch's terminals at any distance, until a new species makes it rebuild the billboards.
 import * as THREE from 'three';
 
 import { movedEnough } from '../stream/lod_policy.js';
@@ -21,6 +21,7 @@ export class TreeBillboards {
         this.bases = new Float32Array(3 * n);
         this.speciesOfTree = new Int32Array(n);
         this.unmatched = 0;
+        this.generation = species.generation; // the species known when the trees were matched
         const perSpecies = new Map(); // species index -> trees
         for (let i = 0; i < n; ++i) {
             for (let j = 0; j < values.length; ++j) values[j] = set.parameters[j][i];

@@ -92,6 +92,8 @@ export class TreeImpostors {
         this.failed = [];
         this.enabled = !!scene.capabilities?.tree_billboards && this.layout?.sphere === FULL_SPHERE;
         this.quad = new THREE.PlaneGeometry(2, 2);
+        this.generation = 0; // grows with every species added after the start
+        this.adding = new Set(); // species indices being loaded by add()
         this.isReady = false;
         this.ready = (this.enabled ? this.load(scene.tree_species ?? []) : Promise.resolve()).then(() => (this.isReady = true));
     }
@@ -111,8 +113,22 @@ export class TreeImpostors {
         );
     }
 
+    // A species the service baked for edited trees (a "species" event, or one listed by the
+    // scene after a reconnect), loaded like those of the start. `generation` then grows, so
+    // that batches whose trees matched no species match again (TreeBillboards.generation).
+    async add(entry) {
+        if (!this.enabled || this.species[entry.index] || this.adding.has(entry.index)) return false;
+        this.adding.add(entry.index);
+        await this.ready;
+        await this.load([entry]);
+        this.adding.delete(entry.index);
+        if (!this.species[entry.index]) return false;
+        ++this.generation;
+        return true;
+    }
+
     // The species index of a tree of `grammar` with these parameter values, or -1 (an edited
-    // tree, or a species whose atlas failed to load).
+    // tree whose species is not baked yet, or a species whose atlas failed to load).
     speciesOf(grammar, parameters) {
         return this.byKey.get(speciesKey(grammar, parameters)) ?? -1;
     }

@@ -111,9 +111,12 @@ export class Streamer {
     // Builds (once) and returns the object a content entry is drawn with.
     object(url, value, variant) {
         if (value.kind === 'extruded' && variant === 'billboards') {
-            if (!value.billboards) {
+            const old = value.billboards;
+            // Trees that matched no species are matched again once a species was added.
+            if (!old || (old.unmatched > 0 && old.generation !== this.trees.generation)) {
                 value.billboards = new TreeBillboards(value.set, this.trees);
-                this.cache.grow(url, value.billboards.gpuBytes);
+                this.cache.grow(url, value.billboards.gpuBytes - (old?.gpuBytes ?? 0));
+                old?.dispose();
             }
             return value.billboards.group;
         }
@@ -237,8 +240,8 @@ export class Streamer {
     // distance (from the profile's tree_geometric_error; Infinity when it is 0)
     // is a billboard (its position and parameters from the batch's extruded set) and each
     // nearer one is drawn from the batch's terminals, which a batch fetches only while its
-    // cell is within that distance; a tree of no served species (edited) is terminals at any
-    // distance. Without species impostors only near batches draw, from their terminals. Until
+    // cell is within that distance; a tree of no served species (edited, its species not baked
+    // yet) is terminals at any distance. Without species impostors only near batches draw, from their terminals. Until
     // the terminals arrive every tree of a near batch is a billboard, so none blinks out.
     updateTrees(b, decision, treeDistance, frame) {
         if (this.treeForm === 'none') {
