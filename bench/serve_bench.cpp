@@ -4,6 +4,10 @@
 //     for one building and for a whole grammar across the resident cells.
 //   serve_bench sizes --port P
 //     bytes per cell on the wire (encoded payloads) against in memory (decoded sets).
+//   serve_bench species --port P [--repeat N]
+//     tree edit to billboards: a cell's trees get a parameter value not used before, and the
+//     service bakes a species per value set they then have; POST to the first and to the last
+//     species event, and to the first species' albedo PNG fetched.
 // Prints one JSON object. Timing is wall time on the client, loopback only.
 #include "hexlod/grammar/extruded_set_codec.h"
 #include "hexlod/grammar/terminal_set_codec.h"
@@ -13,6 +17,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -198,13 +203,78 @@ Json measureSizes(const Options& o) {
             {"memory_to_wire", double(memoryTotal) / double(wireTotal)}};
 }
 
+// The value of one sample line of /metrics ("name{labels} value"), or -1 when it is missing.
+double metricValue(http_client::Connection& c, const std::string& sample) {
+    const std::string text = c.get("/metrics").body;
+    const size_t at = text.find(sample + " ");
+    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + sample.size() + 1));
+}
+
+Json measureSpecies(const Options& o) {
+    http_client::Connection c("127.0.0.1", o.port);
+    const Json scene = getJson(c, "/api/v1/scene");
+    if (!scene["capabilities"]["tree_billboards"].get<bool>())
+        throw std::runtime_error("no tree billboards served");
+    const Json* trees = nullptr;
+    for (const Json& g : scene["grammars"])
+        if (g["kind"] == "tree" && !trees) trees = &g;
+    if (!trees) throw std::runtime_error("the scene has no tree grammar");
+    const Json& parameter = (*trees)["parameters"][0];
+    Json cell;
+    const Json index = getJson(c, "/api/v1/cells");
+    for (const Json& entry : index["cells"])
+        for (const Json& batch : entry["batches"])
+            if (batch["grammar"] == (*trees)["index"] && cell.is_null()) cell = {entry["q"], entry["r"]};
+    http_client::EventStreamReader events("127.0.0.1", o.port, "/api/v1/events");
+    if (!events.next(std::chrono::seconds(5))) throw std::runtime_error("no hello event");
+    std::vector<double> first, last, fetched, perEdit;
+    for (int i = 0; i < o.repeat; ++i) {
+        // A value not used before, inside the declared range: from the journal's next seq, so
+        // that a second run on the same service does not repeat the first's.
+        const double lo = parameter["min"], hi = parameter["max"];
+        const double next = double(getJson(c, "/healthz")["seq"].get<uint64_t>() + 1);
+        const double value = lo + (hi - lo) * (0.3 + 0.4 * std::fmod(next * 0.6180339887, 1.0));
+        const std::string body = "{\"selector\":{\"cell\":" + cell.dump() + "},\"params\":{\"" +
+                                 parameter["name"].get<std::string>() + "\":" + std::to_string(value) + "}}";
+        const auto start = Clock::now();
+        if (c.post("/api/v1/edits", body).status != 200) throw std::runtime_error("edit refused: " + body);
+        size_t species = 0;
+        while (true) {
+            const auto e = events.next(std::chrono::seconds(60));
+            if (!e) throw std::runtime_error("no species event within 60 s");
+            if (e->event == "species-failed") throw std::runtime_error("species bake failed: " + e->data);
+            if (e->event != "species") continue;
+            const auto now = Clock::now();
+            if (species++ == 0) {
+                first.push_back(ms(now - start));
+                const auto png = c.get(Json::parse(e->data)["species"]["impostor"]["albedo_url"]);
+                if (png.status != 200)
+                    throw std::runtime_error("species albedo: " + std::to_string(png.status));
+                fetched.push_back(ms(Clock::now() - start));
+            }
+            if (metricValue(c, "hexlod_tree_species{state=\"baking\"}") == 0.0) {
+                last.push_back(ms(now - start));
+                break;
+            }
+        }
+        perEdit.push_back(double(species));
+    }
+    std::sort(perEdit.begin(), perEdit.end());
+    return {{"cell", cell},
+            {"parameter", parameter["name"]},
+            {"median_species_per_edit", perEdit[perEdit.size() / 2]},
+            {"post_to_first_species", summary(first)},
+            {"post_to_first_species_png", summary(fetched)},
+            {"post_to_last_species", summary(last)}};
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     Options o;
     if (argc < 2) {
-        std::cerr
-            << "usage: serve_bench edits|sizes --port P [--building ID] [--grammar NAME] [--repeat N]\n";
+        std::cerr << "usage: serve_bench edits|sizes|species --port P [--building ID] [--grammar NAME] "
+                     "[--repeat N]\n";
         return 2;
     }
     o.mode = argv[1];
@@ -241,6 +311,8 @@ int main(int argc, char** argv) {
             out["whole_grammar"] = measureEdits(o, "{\"grammar\":\"" + o.grammar + "\"}", true);
         } else if (o.mode == "sizes") {
             out = measureSizes(o);
+        } else if (o.mode == "species") {
+            out = measureSpecies(o);
         } else {
             std::cerr << "serve_bench: unknown mode " << o.mode << "\n";
             return 2;
