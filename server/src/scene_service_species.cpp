@@ -1,6 +1,8 @@
 // SceneService: the tree species it serves, and baking new ones for edited trees.
 #include "hexlod/server/scene_service.h"
 
+#include "hexlod/grammar/terminal_set_codec.h"
+
 namespace hexlod::server {
 
 std::optional<SpeciesAsset> SceneService::species(uint32_t index) const {
@@ -35,8 +37,12 @@ void SceneService::requestMissingSpecies(const std::vector<cells::KeyChange>& ch
                 if (speciesRequested_ >= kMaxEditedSpecies) break;
                 speciesStates_[{batch.grammar, values}] = SpeciesState::Baking;
                 ++speciesRequested_;
+                // Named by its values, so that the same values baked after a restart find
+                // their atlas in the impostor store under the same name.
+                const uint64_t digest = grammar::checksum64(std::span(
+                    reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(float)));
                 requests.push_back(
-                    {batch.grammar, values, trees.name + " edited " + std::to_string(speciesRequested_)});
+                    {batch.grammar, values, trees.name + " edited " + cache::hexDigest(digest)});
             }
         }
     }
