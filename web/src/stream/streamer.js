@@ -241,8 +241,9 @@ export class Streamer {
     // is a billboard (its position and parameters from the batch's extruded set) and each
     // nearer one is drawn from the batch's terminals, which a batch fetches only while its
     // cell is within that distance; a tree of no served species (edited, its species not baked
-    // yet) is terminals at any distance. Without species impostors only near batches draw, from their terminals. Until
-    // the terminals arrive every tree of a near batch is a billboard, so none blinks out.
+    // yet) is terminals at any distance. Without species impostors only near batches draw,
+    // from their terminals. Until the terminals arrive every tree of a near batch is a
+    // billboard, so none blinks out.
     updateTrees(b, decision, treeDistance, frame) {
         if (this.treeForm === 'none') {
             b.shown = { extruded: null, terminal: null };
