@@ -99,10 +99,9 @@ std::unique_ptr<server::SpeciesBakery> speciesBakery(const cells::BatchCatalog& 
     std::vector<std::optional<grammar::CompiledGrammar>> grammars(catalog.index().grammarCount());
     for (uint32_t g = 0; g < grammars.size(); ++g)
         if (catalog.index().isTreeGrammar(g)) grammars[g] = catalog.grammar(g).grammar;
-    lod::SceneImpostorOptions bakeOptions = options;
-    bakeOptions.progress = nullptr; // no progress bar from a background thread
     return std::make_unique<ServeSpeciesBakery>(std::move(grammars), catalog.scene().config.seed,
-                                                std::move(library), setup.render.backend, bakeOptions);
+                                                std::move(library), setup.render.backend, options.treeLayout,
+                                                options.storeDirectory);
 }
 
 } // namespace

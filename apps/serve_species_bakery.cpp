@@ -6,9 +6,12 @@ namespace hexlod::apps {
 
 ServeSpeciesBakery::ServeSpeciesBakery(std::vector<std::optional<grammar::CompiledGrammar>> treeGrammars,
                                        uint64_t seed, std::unique_ptr<render::TerminalMeshLibrary> meshes,
-                                       render::GlBackend backend, lod::SceneImpostorOptions options)
+                                       render::GlBackend backend, impostor::ViewLayout treeLayout,
+                                       const std::string& storeDirectory)
     : grammars_(std::move(treeGrammars)), seed_(seed), meshes_(std::move(meshes)), backend_(backend),
-      options_(std::move(options)), thread_([this] { run(); }) {}
+      treeLayout_(std::move(treeLayout)),
+      store_(storeDirectory.empty() ? std::nullopt : std::optional<impostor::ImpostorStore>(storeDirectory)),
+      thread_([this] { run(); }) {}
 
 ServeSpeciesBakery::~ServeSpeciesBakery() {
     {
@@ -70,10 +73,11 @@ std::optional<server::SpeciesAsset> ServeSpeciesBakery::bakeOne(impostor::Impost
     species.grammarIndex = request.grammar;
     species.parameters = request.parameters;
     species.seed = seed_;
-    species.name = request.name;
+    species.name = "tree:" + request.name;
     impostor::ImpostorAtlas atlas;
     lod::BakedShapeReport report;
-    if (!lod::bakeTreeSpecies(baker, species, *meshes_, options_, atlas, report)) {
+    const impostor::ImpostorStore* const store = store_ ? &*store_ : nullptr;
+    if (!lod::bakeTreeSpecies(baker, store, species, *meshes_, treeLayout_, atlas, report)) {
         error = report.note;
         return std::nullopt;
     }
@@ -81,9 +85,7 @@ std::optional<server::SpeciesAsset> ServeSpeciesBakery::bakeOne(impostor::Impost
     asset.name = request.name;
     asset.grammar = request.grammar;
     asset.parameters = request.parameters;
-    std::optional<impostor::ImpostorStore> store;
-    if (!options_.storeDirectory.empty()) store.emplace(options_.storeDirectory);
-    if (!impostorAsset(atlas, 0, store, asset.impostor, error)) return std::nullopt;
+    if (!impostorAsset(atlas, 0, store_, asset.impostor, error)) return std::nullopt;
     return asset;
 }
 

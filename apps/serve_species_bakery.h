@@ -21,7 +21,7 @@ public:
     // `treeGrammars`: every grammar of the scene in its order, only tree grammars filled.
     ServeSpeciesBakery(std::vector<std::optional<grammar::CompiledGrammar>> treeGrammars, uint64_t seed,
                        std::unique_ptr<render::TerminalMeshLibrary> meshes, render::GlBackend backend,
-                       lod::SceneImpostorOptions options);
+                       impostor::ViewLayout treeLayout, const std::string& storeDirectory);
     ~ServeSpeciesBakery() override; // drops what is queued, finishes the bake under way
     void bake(server::SpeciesRequest request, Done done) override;
 
@@ -34,7 +34,8 @@ private:
     const uint64_t seed_;
     const std::unique_ptr<render::TerminalMeshLibrary> meshes_;
     const render::GlBackend backend_;
-    const lod::SceneImpostorOptions options_;
+    const impostor::ViewLayout treeLayout_;
+    const std::optional<impostor::ImpostorStore> store_; // none: bake in memory only
 
     std::mutex mutex_;
     std::condition_variable wake_;

@@ -41,7 +41,7 @@ std::string speciesName(const scene::BuiltScene& scene, const scene::GrammarBuil
 
 // Loads the atlas of `geometry` under `shape.name` and `key` from the store, or bakes (and
 // stores) it. False when the bake fails: `shape.note` says why.
-bool bakeOrLoad(impostor::ImpostorBaker& baker, impostor::ImpostorStore* store,
+bool bakeOrLoad(impostor::ImpostorBaker& baker, const impostor::ImpostorStore* store,
                 const impostor::BakeGeometry& geometry, uint64_t key, const impostor::ViewLayout& layout,
                 impostor::ImpostorAtlas& atlas, BakedShapeReport& shape) {
     const impostor::StoreLookup found =
@@ -171,33 +171,33 @@ bool bakeSceneImpostors(const scene::BuiltScene& scene, const render::TerminalMe
     }
 
     std::map<uint64_t, int> layerOfKey; // same geometry and layout: one atlas
+    const impostor::ImpostorStore* const storeOrNull = store ? &*store : nullptr;
     for (size_t i = 0; i < items.size(); ++i) {
         const BakeItem& item = items[i];
         const auto shapeStart = std::chrono::steady_clock::now();
         const bool tree = item.shape < 0;
-        const impostor::ViewLayout& layout = tree ? options.treeLayout : options.facadeLayout;
-        impostor::BakeGeometry geometry;
-        glm::vec3 nominal(1.0f);
+        BakedShapeReport shape;
+        impostor::ImpostorAtlas atlas;
+        uint64_t key = 0;
+        bool made = false;
         if (tree) {
-            geometry = treeGeometry(grammarAt(item.grammar).grammar, *item.parameters, scene.config.seed,
-                                    meshes, item.grammar);
+            const TreeSpeciesBake species{&grammarAt(item.grammar).grammar, item.grammar, *item.parameters,
+                                          scene.config.seed, item.name};
+            made = bakeTreeSpecies(baker, storeOrNull, species, meshes, options.treeLayout, atlas, shape);
         } else {
             const render::TerminalMesh& mesh = meshes.mesh(item.grammar, uint16_t(item.shape));
-            geometry = impostor::geometryFromMesh(mesh);
-            nominal = mesh.nominalSize;
+            const impostor::BakeGeometry geometry = impostor::geometryFromMesh(mesh);
+            key = impostor::bakeKey(geometry.hash, mesh.nominalSize, options.facadeLayout);
+            shape.name = item.name;
+            shape.grammar = item.grammar;
+            shape.shape = item.shape;
+            if (layerOfKey.count(key)) {
+                out.facadeLayer[item.grammar][size_t(item.shape)] = layerOfKey[key];
+                if (options.progress) options.progress(i + 1, items.size(), item.name);
+                continue;
+            }
+            made = bakeOrLoad(baker, storeOrNull, geometry, key, options.facadeLayout, atlas, shape);
         }
-        const uint64_t key = impostor::bakeKey(geometry.hash, nominal, layout);
-        BakedShapeReport shape;
-        shape.name = item.name;
-        shape.grammar = item.grammar;
-        shape.shape = item.shape;
-        if (!tree && layerOfKey.count(key)) {
-            out.facadeLayer[item.grammar][size_t(item.shape)] = layerOfKey[key];
-            if (options.progress) options.progress(i + 1, items.size(), item.name);
-            continue;
-        }
-        impostor::ImpostorAtlas atlas;
-        const bool made = bakeOrLoad(baker, store ? &*store : nullptr, geometry, key, layout, atlas, shape);
         shape.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - shapeStart).count();
         if (!made) {
             report.shapes.push_back(shape);
@@ -221,20 +221,18 @@ bool bakeSceneImpostors(const scene::BuiltScene& scene, const render::TerminalMe
     return true;
 }
 
-bool bakeTreeSpecies(impostor::ImpostorBaker& baker, const TreeSpeciesBake& species,
-                     const render::TerminalMeshLibrary& meshes, const SceneImpostorOptions& options,
-                     impostor::ImpostorAtlas& atlas, BakedShapeReport& report) {
+bool bakeTreeSpecies(impostor::ImpostorBaker& baker, const impostor::ImpostorStore* store,
+                     const TreeSpeciesBake& species, const render::TerminalMeshLibrary& meshes,
+                     const impostor::ViewLayout& layout, impostor::ImpostorAtlas& atlas,
+                     BakedShapeReport& report) {
     const auto start = std::chrono::steady_clock::now();
     report = {};
-    report.name = "tree:" + species.name;
+    report.name = species.name;
     report.grammar = species.grammarIndex;
-    std::optional<impostor::ImpostorStore> store;
-    if (!options.storeDirectory.empty()) store.emplace(options.storeDirectory);
     const impostor::BakeGeometry geometry =
         treeGeometry(*species.grammar, species.parameters, species.seed, meshes, species.grammarIndex);
-    const uint64_t key = impostor::bakeKey(geometry.hash, glm::vec3(1.0f), options.treeLayout);
-    const bool made =
-        bakeOrLoad(baker, store ? &*store : nullptr, geometry, key, options.treeLayout, atlas, report);
+    const uint64_t key = impostor::bakeKey(geometry.hash, glm::vec3(1.0f), layout);
+    const bool made = bakeOrLoad(baker, store, geometry, key, layout, atlas, report);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return made;
 }

@@ -69,16 +69,17 @@ struct TreeSpeciesBake {
     uint32_t grammarIndex = 0; // scene order: building grammars, then tree grammars
     std::vector<float> parameters;
     uint64_t seed = 0; // the scene's
-    std::string name;  // the atlas is stored as "tree:<name>"
+    std::string name;  // of the atlas in the store: "tree:<species>"
 };
 
-// Bakes one species' impostor on options.treeLayout, or loads it from options' store, with the
-// same key bakeSceneImpostors gives it: the service bakes a species this way when an edit gives
-// trees values no species had. Needs a current GL context and an initialised baker. False when
-// the bake fails; `report.note` says why.
-bool bakeTreeSpecies(impostor::ImpostorBaker& baker, const TreeSpeciesBake& species,
-                     const render::TerminalMeshLibrary& meshes, const SceneImpostorOptions& options,
-                     impostor::ImpostorAtlas& atlas, BakedShapeReport& report);
+// Bakes one species' impostor on `layout` (a full sphere), or loads it from `store` (null:
+// none). bakeSceneImpostors bakes its species with it and the service the species that edits
+// make, so a species' geometry and key are made in one place. Needs a current GL context and
+// an initialised baker. False when the bake fails; `report.note` says why.
+bool bakeTreeSpecies(impostor::ImpostorBaker& baker, const impostor::ImpostorStore* store,
+                     const TreeSpeciesBake& species, const render::TerminalMeshLibrary& meshes,
+                     const impostor::ViewLayout& layout, impostor::ImpostorAtlas& atlas,
+                     BakedShapeReport& report);
 
 // The geometry of one tree of a species: its terminal set expanded at the origin, every
 // terminal's mesh placed in tree space (x east, y north, z up, the trunk base at the origin).
