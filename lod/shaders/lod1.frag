@@ -52,6 +52,7 @@ void main() {
         c.atoms = e.state2.w;
         c.building = e.state3.x;
         c.parameters = e.rule.y;
+        lod1LoadParameters(c.parameters);
         c.buildingKey = packUint2x32(e.rule.zw);
         Lod1Scope s;
         s.origin = vec2(0.0);

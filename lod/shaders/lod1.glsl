@@ -59,12 +59,15 @@ Lod1Hit lod1Walk(uint rule, Lod1Scope s, Lod1Context c, vec2 point) {
         uint successors = lod1RuleSuccessors[rule], successorCount = lod1RuleSuccessorCount[rule];
         uint arguments = lod1RuleArgumentCount[rule];
         uint chosen = 0xffffffffu;
+        // Cond's and Repeat's one argument, evaluated once ahead of the ops: llvmpipe runs
+        // every branch for every pixel (masked), so an evaluation per op would be paid twice.
+        float first = lod1Arg(rule, 0u, s, c);
         if (op == 7u) { // Shape
             return Lod1Hit(LOD1_TERMINAL, lod1RuleShape[rule], s.origin, s.size);
         } else if (op == 11u) { // NULL
             return hit;
         } else if (op == 6u) { // Cond
-            bool yes = lod1Arg(rule, 0u, s, c) != 0.0;
+            bool yes = first != 0.0;
             if (!yes && successorCount < 2u) return hit;
             chosen = lod1Successors[successors + (yes ? 0u : 1u)];
             s = lod1Descend(s, yes ? 0ul : 1ul);
@@ -134,7 +137,7 @@ Lod1Hit lod1Walk(uint rule, Lod1Scope s, Lod1Context c, vec2 point) {
             chosen = lod1Successors[successors + found];
             s = lod1Descend(s, uint64_t(found));
         } else if (op == 2u && axis < 2u) { // Repeat along x or y
-            float tile = lod1Arg(rule, 0u, s, c);
+            float tile = first;
             float length = s.size[axis];
             if (isnan(tile) || isinf(tile) || !(tile > 0.0) || !(length > 0.0)) return hit;
             double ratio = double(length) / double(tile);

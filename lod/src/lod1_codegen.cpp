@@ -86,7 +86,7 @@ std::string expressionToGlsl(const grammar::CompiledGrammar& g, const grammar::E
             stack.push_back(floatLiteral(in.operand.value));
             break;
         case Opcode::LoadParam:
-            stack.push_back("lod1Params[c.parameters + " + std::to_string(in.operand.index) + "u]");
+            stack.push_back("lod1Parameter[" + std::to_string(in.operand.index) + "]");
             break;
         case Opcode::LoadAccessor:
             stack.push_back(accessorGlsl(Accessor(in.operand.index)));
@@ -251,6 +251,18 @@ std::string generateLod1Grammar(const grammar::CompiledGrammar& g) {
     table(
         "lod1ArgumentRelative", "uint",
         [&](size_t i) { return std::string(g.arguments[i].relative ? "1u" : "0u"); }, g.arguments.size());
+    // The parameters the expressions read, loaded once per pixel: llvmpipe runs every case of
+    // lod1Argument's switch for every argument it evaluates (masked, not branched around), so
+    // a storage-buffer read in a case is paid that often; a private array read at a constant
+    // index is a register.
+    std::vector<bool> read(g.params.size(), false);
+    for (const grammar::Instruction& in : g.code)
+        if (in.op == Opcode::LoadParam && in.operand.index < read.size()) read[in.operand.index] = true;
+    out << "float lod1Parameter[" << std::max<size_t>(g.params.size(), 1) << "];\n";
+    out << "void lod1LoadParameters(uint first) {\n";
+    for (size_t p = 0; p < read.size(); ++p)
+        if (read[p]) out << "    lod1Parameter[" << p << "] = lod1Params[first + " << p << "u];\n";
+    out << "}\n";
     out << "float lod1Argument(uint argument, Lod1Scope s, Lod1Context c, uint64_t randomKey) {\n    switch "
            "(argument) {\n";
     for (size_t a = 0; a < g.arguments.size(); ++a) {

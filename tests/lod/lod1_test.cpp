@@ -95,6 +95,24 @@ TEST_F(Lod1Test, BytecodeTranslatesToGlslInTheSameOrder) {
     EXPECT_TRUE(sawRandom);
 }
 
+// llvmpipe evaluates every case of lod1Argument for each argument (masked), so the cases must
+// not read the parameter buffer: lod1LoadParameters reads each parameter the grammar uses once.
+TEST_F(Lod1Test, ArgumentsReadParametersLoadedOncePerPixel) {
+    const grammar::CompiledGrammar& g = city_->catalog->grammar(1).grammar; // residential
+    const std::string all = generateLod1Grammar(g);
+    const size_t load = all.find("void lod1LoadParameters(uint first)");
+    const size_t arguments = all.find("float lod1Argument(");
+    ASSERT_NE(load, std::string::npos);
+    ASSERT_NE(arguments, std::string::npos);
+    EXPECT_EQ(all.find("lod1Params[", arguments), std::string::npos);
+    const std::string loads = all.substr(load, arguments - load);
+    for (size_t p = 0; p < g.params.size(); ++p) {
+        const std::string read = "lod1Params[first + " + std::to_string(p) + "u]";
+        const bool used = all.find("lod1Parameter[" + std::to_string(p) + "]", arguments) != std::string::npos;
+        EXPECT_EQ(loads.find(read) != std::string::npos, used) << g.params[p].name;
+    }
+}
+
 class Lod1GpuTest : public render::GlTest {};
 
 // Draws one batch's walls face-on with LOD1 and compares, for every covered pixel, what the

@@ -10,7 +10,9 @@
 
 namespace hexlod::lod {
 
-// GLSL defining lod1Rule* tables, lod1Successors, lod1ArgumentRelative and
+// GLSL defining lod1Rule* tables, lod1Successors, lod1ArgumentRelative,
+// `void lod1LoadParameters(uint first)` (the building's parameters the expressions read, from
+// the parameter buffer into lod1Parameter[], once per pixel) and
 // `float lod1Argument(uint argument, Lod1Scope s, Lod1Context c, uint64_t randomKey)`.
 std::string generateLod1Grammar(const grammar::CompiledGrammar& grammar);
 
