@@ -108,7 +108,8 @@ TEST_F(Lod1Test, ArgumentsReadParametersLoadedOncePerPixel) {
     const std::string loads = all.substr(load, arguments - load);
     for (size_t p = 0; p < g.params.size(); ++p) {
         const std::string read = "lod1Params[first + " + std::to_string(p) + "u]";
-        const bool used = all.find("lod1Parameter[" + std::to_string(p) + "]", arguments) != std::string::npos;
+        const bool used =
+            all.find("lod1Parameter[" + std::to_string(p) + "]", arguments) != std::string::npos;
         EXPECT_EQ(loads.find(read) != std::string::npos, used) << g.params[p].name;
     }
 }
