@@ -59,9 +59,58 @@ Lod1Hit lod1Walk(uint rule, Lod1Scope s, Lod1Context c, vec2 point) {
         uint successors = lod1RuleSuccessors[rule], successorCount = lod1RuleSuccessorCount[rule];
         uint arguments = lod1RuleArgumentCount[rule];
         uint chosen = 0xffffffffu;
-        // Cond's and Repeat's one argument, evaluated once ahead of the ops: llvmpipe runs
-        // every branch for every pixel (masked), so an evaluation per op would be paid twice.
-        float first = lod1Arg(rule, 0u, s, c);
+        // llvmpipe runs every branch for every pixel (masked, not branched around), and each
+        // argument evaluation runs every case of lod1Argument, so the ops share three passes
+        // over their arguments instead of one or more each. The first: Cond's and Repeat's
+        // value, Choose's total, Split's sums.
+        bool split = op == 1u && axis < 2u, choose = op == 10u;
+        float first = 0.0, total = 0.0;
+        bool valid = true;
+        double absoluteSum = 0.0, relativeSum = 0.0;
+        for (uint i = 0u; i < (op == 7u || op == 11u ? 0u : arguments); ++i) {
+            float value = lod1Arg(rule, i, s, c);
+            if (i == 0u) first = value;
+            bool finite = !(isnan(value) || isinf(value) || value < 0.0);
+            valid = valid && finite;
+            total += finite ? value : 0.0;
+            double size = finite ? double(value) : 0.0;
+            if (lod1ArgumentRelative[lod1RuleArguments[rule] + i] != 0u) relativeSum += size;
+            else absoluteSum += size;
+        }
+        // The second: Choose's pick; Split's parts and offsets as the expander lays them out,
+        // the sum, then (third pass) less each part from the end.
+        float pick = lod1Unit(lod1Combine(s.key, lod1RuleKey[rule])) * total;
+        double available = max(0.0, double(s.size[min(axis, 1u)]));
+        double remainder = available - absoluteSum;
+        double absoluteScale = remainder < 0.0 ? available / absoluteSum : 1.0;
+        double relativeScale = (remainder > 0.0 && relativeSum > 0.0) ? remainder / relativeSum : 0.0;
+        float offset = 0.0, cumulative = 0.0;
+        uint picked = arguments - 1u;
+        for (uint i = 0u; i < (split || (choose && valid) ? arguments : 0u); ++i) {
+            float value = lod1Arg(rule, i, s, c);
+            cumulative += value;
+            if (choose && pick < cumulative) {
+                picked = i;
+                break;
+            }
+            if (isnan(value) || isinf(value) || value < 0.0) value = 0.0;
+            bool relative = lod1ArgumentRelative[lod1RuleArguments[rule] + i] != 0u;
+            offset += float(double(value) * (relative ? relativeScale : absoluteScale));
+        }
+        uint found = arguments;
+        float part = 0.0;
+        float along = point[min(axis, 1u)] - s.origin[min(axis, 1u)];
+        for (uint k = split ? arguments : 0u; k-- > 0u;) {
+            float size = lod1Arg(rule, k, s, c);
+            if (isnan(size) || isinf(size) || size < 0.0) size = 0.0;
+            bool relative = lod1ArgumentRelative[lod1RuleArguments[rule] + k] != 0u;
+            part = float(double(size) * (relative ? relativeScale : absoluteScale));
+            offset -= part;
+            if (part > 0.0 && along >= offset && along < offset + part) {
+                found = k;
+                break;
+            }
+        }
         if (op == 7u) { // Shape
             return Lod1Hit(LOD1_TERMINAL, lod1RuleShape[rule], s.origin, s.size);
         } else if (op == 11u) { // NULL
@@ -71,60 +120,11 @@ Lod1Hit lod1Walk(uint rule, Lod1Scope s, Lod1Context c, vec2 point) {
             if (!yes && successorCount < 2u) return hit;
             chosen = lod1Successors[successors + (yes ? 0u : 1u)];
             s = lod1Descend(s, yes ? 0ul : 1ul);
-        } else if (op == 10u) { // Choose
-            float total = 0.0;
-            for (uint i = 0u; i < arguments; ++i) {
-                float p = lod1Arg(rule, i, s, c);
-                if (isnan(p) || isinf(p) || p < 0.0) return hit;
-                total += p;
-            }
-            if (!(total > 0.0) || isinf(total)) return hit;
-            float pick = lod1Unit(lod1Combine(s.key, lod1RuleKey[rule])) * total;
-            uint picked = arguments - 1u;
-            float cumulative = 0.0;
-            for (uint i = 0u; i < arguments; ++i) {
-                cumulative += lod1Arg(rule, i, s, c);
-                if (pick < cumulative) {
-                    picked = i;
-                    break;
-                }
-            }
+        } else if (choose) {
+            if (!valid || !(total > 0.0) || isinf(total)) return hit;
             chosen = lod1Successors[successors + picked];
             s = lod1Descend(s, uint64_t(picked));
-        } else if (op == 1u && axis < 2u) { // Split along x or y
-            double absoluteSum = 0.0, relativeSum = 0.0;
-            for (uint i = 0u; i < arguments; ++i) {
-                float size = lod1Arg(rule, i, s, c);
-                if (isnan(size) || isinf(size) || size < 0.0) size = 0.0;
-                if (lod1ArgumentRelative[lod1RuleArguments[rule] + i] != 0u) relativeSum += double(size);
-                else absoluteSum += double(size);
-            }
-            double available = max(0.0, double(s.size[axis]));
-            double remainder = available - absoluteSum;
-            double absoluteScale = remainder < 0.0 ? available / absoluteSum : 1.0;
-            double relativeScale = (remainder > 0.0 && relativeSum > 0.0) ? remainder / relativeSum : 0.0;
-            // Parts and offsets as the expander lays them out: the sum, less each part from the end.
-            float offset = 0.0;
-            for (uint i = 0u; i < arguments; ++i) {
-                float size = lod1Arg(rule, i, s, c);
-                if (isnan(size) || isinf(size) || size < 0.0) size = 0.0;
-                bool relative = lod1ArgumentRelative[lod1RuleArguments[rule] + i] != 0u;
-                offset += float(double(size) * (relative ? relativeScale : absoluteScale));
-            }
-            float along = point[axis] - s.origin[axis];
-            uint found = arguments;
-            float part = 0.0;
-            for (uint k = arguments; k-- > 0u;) {
-                float size = lod1Arg(rule, k, s, c);
-                if (isnan(size) || isinf(size) || size < 0.0) size = 0.0;
-                bool relative = lod1ArgumentRelative[lod1RuleArguments[rule] + k] != 0u;
-                part = float(double(size) * (relative ? relativeScale : absoluteScale));
-                offset -= part;
-                if (part > 0.0 && along >= offset && along < offset + part) {
-                    found = k;
-                    break;
-                }
-            }
+        } else if (split) { // along x or y
             if (found == arguments) return hit;
             s.origin[axis] += offset;
             s.size[axis] = part;
