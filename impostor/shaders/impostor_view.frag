@@ -21,6 +21,6 @@ void main() {
     vec4 weights;
     impostorViews(forward, views, weights);
     if (centralOnly != 0u) weights = vec4(1.0, 0.0, 0.0, 0.0);
-    outAlbedo = impostorReconstruct(layer, vPosition.x * right + vPosition.y * up, forward, views, weights, iterations,
-                                    outNormalDepth);
+    outAlbedo = impostorReconstruct(layer, vPosition.x * right + vPosition.y * up, forward, views, weights,
+                                    centralOnly != 0u ? 1u : 4u, iterations, outNormalDepth);
 }

@@ -69,13 +69,16 @@ void impostorViews(vec3 forward, out uvec4 views, out vec4 weights) {
 // Reconstructs the shape along a ray in its normalised frame (positions relative to the
 // bounding sphere's centre, in radii): `rayOrigin` on the plane through the centre across
 // `forward`, the ray running along `forward` toward the viewer. Returns albedo with coverage;
-// `normalDepth` gets the blended shape-space normal and the depth along `forward`.
-vec4 impostorReconstruct(uint layer, vec3 rayOrigin, vec3 forward, uvec4 views, vec4 weights, uint iterations,
-                         out vec4 normalDepth) {
+// `normalDepth` gets the blended shape-space normal and the depth along `forward`. Only the
+// first `viewCount` views are read: a caller that uses the nearest view alone passes 1, as a
+// zero weight does not save the reads on llvmpipe, which runs every iteration that any pixel
+// of a SIMD group runs, masked, and skips a view's reads only when the loop ends before it.
+vec4 impostorReconstruct(uint layer, vec3 rayOrigin, vec3 forward, uvec4 views, vec4 weights, uint viewCount,
+                         uint iterations, out vec4 normalDepth) {
     vec4 colour = vec4(0.0);
     vec4 nd = vec4(0.0);
     float coverage = 0.0;
-    for (int i = 0; i < 4; ++i) {
+    for (uint i = 0u; i < min(viewCount, 4u); ++i) {
         if (weights[i] <= 0.0) continue;
         vec3 viewForward = impostorViewDirection(views[i]), right, up;
         impostorBasis(viewForward, impostorLayout.w, right, up);

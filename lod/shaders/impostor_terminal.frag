@@ -73,7 +73,7 @@ void main() {
         vec4 weights;
         impostorViews(forward, views, weights);
         vec4 nd;
-        vec4 a = impostorReconstruct(layer, rayOrigin, forward, views, weights, parallaxIterations, nd);
+        vec4 a = impostorReconstruct(layer, rayOrigin, forward, views, weights, 4u, parallaxIterations, nd);
         if (blend > 0.0) {
             // Coverage-weighted, as two overlapping layers of paint: where one LOD shows nothing
             // (alpha 0, depth -1) the other's colour, normal and depth are kept as they are, so

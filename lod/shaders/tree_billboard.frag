@@ -33,8 +33,8 @@ void main() {
     impostorViews(forward, views, weights);
     if (vOneView != 0u) weights = vec4(1.0, 0.0, 0.0, 0.0); // the lookup puts the nearest first
     vec4 normalDepth;
-    vec4 albedo =
-        impostorReconstruct(vSpecies, rayOrigin, forward, views, weights, vOneView != 0u ? 0u : 1u, normalDepth);
+    vec4 albedo = impostorReconstruct(vSpecies, rayOrigin, forward, views, weights, vOneView != 0u ? 1u : 4u,
+                                      vOneView != 0u ? 0u : 1u, normalDepth);
     // With multisampling, coverage becomes the sample mask (alpha to coverage); else a cutout.
     if (albedo.a < (alphaToCoverage != 0u ? 0.02 : 0.5)) discard;
     vec3 world = vBase + sphere.xyz + sphere.w * (rayOrigin + normalDepth.w * forward);
