@@ -116,6 +116,38 @@ TEST_F(Lod1Test, ArgumentsReadParametersLoadedOncePerPixel) {
 
 class Lod1GpuTest : public render::GlTest {};
 
+// The generated interpreter links whatever parameters a grammar has: none at all, or one no
+// expression reads (lod1LoadParameters then loads nothing, or leaves it out).
+TEST_F(Lod1GpuTest, InterpretersLinkWithoutParametersOrWithUnreadOnes) {
+    const char* sources[] = {
+        "shape wall (width = 1, height = 1, depth = 0, depth_ratio = 0, triangles = 2);\n"
+        "Lot -> Extrude(9) { Facade, Roof };\n"
+        "Facade -> Split(y, ~1, 3) { Body, Wall };\n"
+        "Body -> Repeat(x, 2.5, fit) { Wall };\n"
+        "Wall -> Shape(wall);\nRoof -> NULL;\n",
+        "param unused = 1 in [0, 2];\nparam tile = 2.5 in [1, 5];\n"
+        "shape wall (width = 1, height = 1, depth = 0, depth_ratio = 0, triangles = 2);\n"
+        "Lot -> Extrude(9) { Facade, Roof };\n"
+        "Facade -> Repeat(x, tile, fit) { Wall };\n"
+        "Wall -> Shape(wall);\nRoof -> NULL;\n",
+    };
+    for (const char* source : sources) {
+        grammar::DiagnosticList diagnostics;
+        const grammar::CompiledGrammar g = grammar::compileGrammar(source, "test.grammar", diagnostics);
+        ASSERT_FALSE(g.rules.empty()) << source;
+        const std::string glsl = generateLod1Grammar(g);
+        EXPECT_EQ(glsl.find("lod1Params[first + 0u]"), std::string::npos) << "no expression reads 'unused'";
+        std::string error;
+        render::ShaderLibrary library = lodShaderLibrary();
+        library.add("lod1_grammar.glsl", glsl);
+        render::ShaderProgram program = render::ShaderProgram::build(
+            library,
+            {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "lod1.frag"}}, "",
+            error);
+        EXPECT_TRUE(program.valid()) << error << "\n" << glsl;
+    }
+}
+
 // Draws one batch's walls face-on with LOD1 and compares, for every covered pixel, what the
 // GLSL walk found with the CPU walk at the point the pixel reports.
 TEST_F(Lod1GpuTest, TheGlslWalkFindsWhatTheCpuWalkFinds) {
