@@ -71,7 +71,7 @@ private:
 
 class ColumnReader {
 public:
-    explicit ColumnReader(const std::vector<uint8_t>& body) : body_(body) {}
+    explicit ColumnReader(std::span<const uint8_t> body) : body_(body) {}
     template <typename F> void column(size_t count, F take) {
         for (size_t i = 0; i < count; ++i) {
             uint32_t w;
@@ -86,7 +86,7 @@ public:
     }
 
 private:
-    const std::vector<uint8_t>& body_;
+    std::span<const uint8_t> body_;
     size_t at_ = 0;
 };
 
@@ -202,7 +202,8 @@ bool decodeExtrudedSet(std::span<const uint8_t> payload, ExtrudedSetHeader& head
     ExtrudedSetPayloadInfo info;
     if (!peekExtrudedSet(payload, info, error)) return false;
     const size_t nb = info.buildings, nv = info.vertices, ne = info.elements, p = info.parametersPerBuilding;
-    std::vector<uint8_t> body;
+    const detail::ScratchRelease release;
+    std::span<const uint8_t> body;
     if (!detail::decompressFrame(payload.subspan(kExtrudedSetHeaderBytes), 4 * bodyWords(nb, nv, ne, p), body,
                                  error))
         return false;

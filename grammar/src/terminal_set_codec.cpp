@@ -159,7 +159,8 @@ bool decodeTerminalSet(std::span<const uint8_t> payload, TerminalSet& out, std::
                false;
     const size_t countsEnd = kTerminalSetFixedHeaderBytes + 4 * shapes;
     const size_t n = static_cast<size_t>(info.recordCount);
-    std::vector<uint8_t> body;
+    const detail::ScratchRelease release;
+    std::span<const uint8_t> body;
     if (!detail::decompressFrame(payload.subspan(countsEnd), info.recordCount * sizeof(TerminalRecord), body,
                                  error))
         return false;

@@ -3,7 +3,9 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <memory>
+#include <new>
 
 namespace hexlod::grammar::detail {
 namespace {
@@ -16,6 +18,38 @@ struct ZstdContexts {
 ZstdContexts& contexts() {
     thread_local ZstdContexts c;
     return c;
+}
+
+// Grown with realloc, which leaves the new bytes uninitialised (zstd writes them) and moves
+// large blocks by remapping their pages instead of copying them.
+class Scratch {
+public:
+    Scratch() = default;
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+    ~Scratch() { std::free(data_); }
+    uint8_t* data() const { return data_; }
+    size_t capacity() const { return capacity_; }
+    void reserve(size_t bytes) {
+        if (bytes <= capacity_) return;
+        void* grown = std::realloc(data_, bytes);
+        if (!grown) throw std::bad_alloc();
+        data_ = static_cast<uint8_t*>(grown);
+        capacity_ = bytes;
+    }
+    void release() {
+        std::free(data_);
+        data_ = nullptr;
+        capacity_ = 0;
+    }
+
+private:
+    uint8_t* data_ = nullptr;
+    size_t capacity_ = 0;
+};
+Scratch& scratch() {
+    thread_local Scratch s;
+    return s;
 }
 
 } // namespace
@@ -37,7 +71,7 @@ size_t compressFrame(std::span<const uint8_t> body, int level, std::vector<uint8
 
 // One byte of room beyond the expected size tells "the frame holds more" apart from "the
 // frame ends here".
-bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::vector<uint8_t>& body,
+bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::span<const uint8_t>& result,
                      std::string& error) {
     const unsigned long long declared = ZSTD_getFrameContentSize(frame.data(), frame.size());
     if (declared == ZSTD_CONTENTSIZE_ERROR) return error = "body is not a zstd frame", false;
@@ -48,17 +82,22 @@ bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::vec
     ZSTD_DCtx* dctx = contexts().decompress.get();
     ZSTD_DCtx_reset(dctx, ZSTD_reset_session_only);
     const uint64_t limit = expected + 1;
-    body.resize(
-        static_cast<size_t>(std::min<uint64_t>(limit, std::max<uint64_t>(frame.size() * 8, 1 << 16))));
+    Scratch& body = scratch();
+    // Room the scratch already has is used at once; beyond it the body grows only with what
+    // the frame delivers.
+    size_t room = static_cast<size_t>(std::min<uint64_t>(
+        limit, std::max<uint64_t>({frame.size() * 8, uint64_t(1) << 16, uint64_t(body.capacity())})));
+    body.reserve(room);
     ZSTD_inBuffer in{frame.data(), frame.size(), 0};
     size_t produced = 0;
     size_t remaining = 1; // zstd's hint; 0 once the frame is complete
     while (true) {
-        if (produced == body.size()) {
-            if (body.size() == limit) break;
-            body.resize(static_cast<size_t>(std::min<uint64_t>(limit, body.size() * 2)));
+        if (produced == room) {
+            if (room == limit) break;
+            room = static_cast<size_t>(std::min<uint64_t>(limit, uint64_t(room) * 2));
+            body.reserve(room);
         }
-        ZSTD_outBuffer out{body.data(), body.size(), produced};
+        ZSTD_outBuffer out{body.data(), room, produced};
         const size_t consumed = in.pos;
         remaining = ZSTD_decompressStream(dctx, &out, &in);
         if (ZSTD_isError(remaining))
@@ -75,8 +114,12 @@ bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::vec
         return error = "body decodes to " + std::to_string(produced) + " bytes, the header needs " +
                        std::to_string(expected),
                false;
-    body.resize(produced);
+    result = std::span<const uint8_t>(body.data(), produced);
     return true;
+}
+
+ScratchRelease::~ScratchRelease() {
+    if (scratch().capacity() > kKeptScratchBytes) scratch().release();
 }
 
 } // namespace hexlod::grammar::detail

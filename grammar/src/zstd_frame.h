@@ -1,7 +1,9 @@
 // The zstd plumbing both payload codecs share (terminal sets and extruded sets,
 // docs/protocol.md): one compression and one decompression context per thread, and a
 // decompressor that grows its output with what the frame really delivers, so a header
-// that claims gigabytes costs nothing unless the frame holds them.
+// that claims gigabytes costs nothing unless the frame holds them. The output is a scratch
+// buffer kept per thread: a fresh one per payload cost more in page faults and zero-filling
+// than zstd took to decode into it.
 #pragma once
 
 #include <cstdint>
@@ -33,9 +35,20 @@ inline uint32_t unzigzag(uint32_t z) {
 size_t compressFrame(std::span<const uint8_t> body, int level, std::vector<uint8_t>& out, size_t offset);
 
 // Decompresses one frame that must decode to exactly `expected` bytes and fill `frame`
-// completely. On failure returns false with `error` saying why (not a frame, corrupt,
-// truncated, too long or short, trailing bytes).
-bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::vector<uint8_t>& body,
+// completely. `body` then views the bytes, in this thread's scratch buffer: valid until the
+// thread's next call. On failure returns false with `error` saying why (not a frame,
+// corrupt, truncated, too long or short, trailing bytes).
+bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::span<const uint8_t>& body,
                      std::string& error);
+
+// The most scratch a thread keeps between payloads. A decoder declares a ScratchRelease
+// before it decompresses, which releases a larger body's buffer when the decoder returns.
+constexpr size_t kKeptScratchBytes = size_t(64) << 20;
+struct ScratchRelease {
+    ScratchRelease() = default;
+    ScratchRelease(const ScratchRelease&) = delete;
+    ScratchRelease& operator=(const ScratchRelease&) = delete;
+    ~ScratchRelease();
+};
 
 } // namespace hexlod::grammar::detail

@@ -229,6 +229,27 @@ TEST(TerminalSetCodec, ALyingRecordCountCostsNoHugeAllocation) {
     EXPECT_FALSE(error.empty());
 }
 
+// Decoding reuses a per-thread buffer for the decompressed body: after a large set has grown
+// it, a small set still decodes exactly, and lying headers are still found.
+TEST(TerminalSetCodec, DecodingAfterALargerSetIsUnchanged) {
+    const TerminalSet large = residentialBatch(40);
+    TerminalSet decoded;
+    std::string error;
+    ASSERT_TRUE(decodeTerminalSet(encodeTerminalSet(large), decoded, error)) << error;
+    ASSERT_TRUE(sameBytes(large, decoded));
+    const TerminalSet small = goldenSet();
+    const std::vector<uint8_t> good = encodeTerminalSet(small);
+    ASSERT_TRUE(decodeTerminalSet(good, decoded, error)) << error;
+    EXPECT_TRUE(sameBytes(small, decoded));
+    expectRejected(with<uint64_t>(good, 72, 4), "sum to 3");
+    expectRejected(with<uint64_t>(good, 80, 1u << 20), "truncated");
+    std::vector<uint8_t> moved = with<uint32_t>(good, kTerminalSetFixedHeaderBytes, 1);
+    expectRejected(with<uint32_t>(moved, kTerminalSetFixedHeaderBytes + 4, 2), "checksum mismatch");
+    // And the large one again, from a buffer the small one used last.
+    ASSERT_TRUE(decodeTerminalSet(encodeTerminalSet(large), decoded, error)) << error;
+    EXPECT_TRUE(sameBytes(large, decoded));
+}
+
 TEST(TerminalSetCodec, RejectsRecordsOutsideTheirShapeRun) {
     TerminalSet set = goldenSet();
     set.records[0].shapeAndDepth = 1; // shape 1 inside the run of shape 0
