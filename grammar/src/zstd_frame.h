@@ -43,7 +43,7 @@ bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::spa
 
 // The most scratch a thread keeps between payloads. A decoder declares a ScratchRelease
 // before it decompresses, which releases a larger body's buffer when the decoder returns.
-constexpr size_t kKeptScratchBytes = size_t(64) << 20;
+constexpr size_t kKeptScratchBytes = size_t(32) << 20; // the thesis city's largest body is 27 MB
 struct ScratchRelease {
     ScratchRelease() = default;
     ScratchRelease(const ScratchRelease&) = delete;
