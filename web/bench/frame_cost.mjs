@@ -3,7 +3,7 @@
 // frames rendered by hand, each timed until a one-pixel readPixels returns (so the time
 // includes the GL work, which gl.finish() in chromium does not wait for):
 // - the whole frame;
-// - the frame without the impostor meshes (LOD2 and LOD3);
+// - the frame without the impostor meshes (LOD2 and LOD3, and the tree billboards);
 // - the whole frame with a one-pixel scissor, which leaves the vertex and primitive work and
 //   drops nearly all of the fill.
 // Prints one JSON object, times in milliseconds (median of 5 frames each).
@@ -39,7 +39,8 @@ try {
         };
         const impostors = [];
         world.scene.traverse((o) => {
-            if (o.isInstancedMesh && o.visible && o.material?.uniforms?.atlasLayout) impostors.push(o);
+            // Terminal impostors (merged quads) and tree billboards (instanced) both sample atlases.
+            if (o.isMesh && o.visible && o.material?.uniforms?.atlasLayout) impostors.push(o);
         });
         const out = {
             impostor_meshes: impostors.length,

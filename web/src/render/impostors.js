@@ -1,14 +1,15 @@
 // LOD3 and LOD2 of terminals whose shape has a baked impostor (scene.capabilities.impostors;
 // the atlases of /api/v1/impostors/...: albedo PNG, sRGB with coverage in alpha, and the
-// shape-space normal with depth PNG). An impostor instance is a quad over the shape's bounding
-// sphere (centre, radius, shape space at the nominal size) carried by the terminal's instance
-// matrix: LOD2 faces the central view and shows it; LOD3 faces the camera and blends the four
+// shape-space normal with depth PNG). An impostor is a quad over the shape's bounding sphere
+// (centre, radius, shape space at the nominal size) carried by the terminal's matrix (one
+// merged mesh of quads per shape and LOD, impostor_quads.js): LOD2 faces the central view and shows it; LOD3 faces the camera and blends the four
 // grid views around the camera's direction in shape space by their bilinear weights, each
 // sampled where the quad's point lies in that view's frame (the reconstruction of
 // impostor_views.glsl without its depth iterations). Coverage under one half is discarded
 // (alpha test, no sorting); normals light it with the scene's sun.
 import * as THREE from 'three';
 
+import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
 import { IMPOSTOR_ATLAS_GLSL, IMPOSTOR_VIEWS_GLSL, VIEW_BLEND_GLSL } from './impostor_views.js';
 
 const VERTEX = /* glsl */ `
@@ -21,6 +22,7 @@ flat out vec4 vViews;
 out vec4 vWeights;
 out vec2 vUv0, vUv1, vUv2, vUv3;
 out vec3 vSun;             // the sun in shape space
+${QUAD_MATRIX_GLSL}
 ${IMPOSTOR_VIEWS_GLSL}
 ${VIEW_BLEND_GLSL}
 vec2 viewUv(float view, vec3 q) {
@@ -33,10 +35,11 @@ vec2 viewUv(float view, vec3 q) {
 // facade normal, as the renderer's normal rule takes a zero nominal component as a ratio of 1.
 // Dividing by the zero depth instead would make the matrix singular and its inverse NaN.
 mat4 shapeToWorldMatrix() {
-    vec3 x = instanceMatrix[0].xyz / nominal.x, y = instanceMatrix[1].xyz / nominal.y;
-    vec3 z = instanceMatrix[2].xyz;
+    mat4 terminal = quadMatrix();
+    vec3 x = terminal[0].xyz / nominal.x, y = terminal[1].xyz / nominal.y;
+    vec3 z = terminal[2].xyz;
     z = nominal.z > 1e-6 && dot(z, z) > 1e-12 ? z / nominal.z : normalize(cross(x, y));
-    return modelMatrix * mat4(vec4(x, 0.0), vec4(y, 0.0), vec4(z, 0.0), instanceMatrix[3]);
+    return modelMatrix * mat4(vec4(x, 0.0), vec4(y, 0.0), vec4(z, 0.0), terminal[3]);
 }
 void main() {
     mat4 shapeToWorld = shapeToWorldMatrix();
@@ -114,7 +117,6 @@ export class ImpostorSet {
         this.atlases = new Map(); // "grammar/shape" -> atlas
         this.failed = [];
         this.enabled = !!scene.capabilities?.impostors && this.layout?.sphere === 'hemi-octahedral';
-        this.quad = new THREE.PlaneGeometry(2, 2);
         this.isReady = false;
         this.ready = (this.enabled ? this.load(scene) : Promise.resolve()).then(() => (this.isReady = true));
     }
@@ -167,9 +169,9 @@ export class ImpostorSet {
         return material;
     }
 
+    // Quads for up to `capacity` terminals, written as an InstancedMesh's instances are.
     makeMesh(atlas, lod, capacity) {
-        const mesh = new THREE.InstancedMesh(this.quad, this.material(atlas, lod), capacity);
-        mesh.frustumCulled = false;
+        const mesh = new ImpostorQuads(this.material(atlas, lod), capacity);
         mesh.raycast = () => {}; // picking hits the base volumes behind impostors
         return mesh;
     }

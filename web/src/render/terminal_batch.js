@@ -61,7 +61,8 @@ export class TerminalBatch {
         this.sorted = treeCut || this.runs.some((r) => r.lod3);
         if (treeCut) for (const run of this.runs) run.records ??= new Uint32Array(run.count);
         this.lastCut = -1;
-        this.gpuBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
+        this.baseBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
+        this.gpuBytes = this.baseBytes + this.impostorBytes();
         // Without impostors or a tree cut the lists never change: the instance buffers hold all there is.
         if (!this.sorted) this.matrices = this.frames = this.sizes = null;
     }
@@ -127,6 +128,14 @@ export class TerminalBatch {
             run.lod4.userData.records = run.records ?? null;
         }
         this.counts = counts;
+        this.gpuBytes = this.baseBytes + this.impostorBytes();
+    }
+
+    // The impostor quads' bytes, which grow with the most quads a LOD has drawn.
+    impostorBytes() {
+        let bytes = 0;
+        for (const run of this.runs) bytes += (run.lod3?.bytes ?? 0) + (run.lod2?.bytes ?? 0);
+        return bytes;
     }
 
     // The record index behind instance `instanceId` of a LOD4 mesh of this batch.

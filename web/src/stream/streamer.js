@@ -230,7 +230,10 @@ export class Streamer {
     showTerminals(b, term, frame, cut = null) {
         const value = this.cache.get(term);
         frame.objects.push(this.object(term, value, 'terminals'));
+        const bytes = value.terminals.gpuBytes;
         value.terminals.updateLod(frame.local, frame.distances, cut);
+        // Impostor quads grow with what they draw.
+        if (value.terminals.gpuBytes !== bytes) this.cache.grow(term, value.terminals.gpuBytes - bytes);
         if (frame.visible) for (const lod of [4, 3, 2]) frame.stats.terminals[lod] += value.terminals.counts[lod];
         frame.pinned.add(term);
         b.drawn = { url: term, version: value.version, kind: 'terminal' };

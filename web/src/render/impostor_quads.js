@@ -1,0 +1,120 @@
+// Impostor quads as one merged, non-instanced mesh: four vertices per quad, each carrying its
+// quad's matrix. It stands in for an InstancedMesh of a 4-vertex quad (the same `count`,
+// `setMatrixAt` and `instanceMatrix.array` / `needsUpdate`), because software renderers pay a
+// fixed cost per instance: on SwiftShader 51,200 instances of a quad took 690 ms a frame, the
+// same vertices as one instance 45 ms (web/bench/frame_cost.mjs measures the viewer's split).
+// The vertex shader reads the matrix from `quadX`, `quadY`, `quadZ`: the matrix's first three
+// columns in xyz and its translation spread over their w (see QUAD_MATRIX_GLSL).
+import * as THREE from 'three';
+
+// The quad's corners in the plane z = 0, as THREE.PlaneGeometry(2, 2) lays them out.
+const CORNERS = [-1, 1, 1, 1, -1, -1, 1, -1];
+const TRIANGLES = [0, 2, 1, 2, 3, 1];
+
+// GLSL: the quad's matrix, as InstancedMesh's `instanceMatrix` would give it.
+export const QUAD_MATRIX_GLSL = /* glsl */ `
+in vec4 quadX, quadY, quadZ;
+mat4 quadMatrix() {
+    return mat4(vec4(quadX.xyz, 0.0), vec4(quadY.xyz, 0.0), vec4(quadZ.xyz, 0.0), vec4(quadX.w, quadY.w, quadZ.w, 1.0));
+}
+`;
+
+// The per-quad matrices, written as an InstancedMesh's are; `needsUpdate` spreads the first
+// `count` of them over their vertices.
+class QuadMatrices {
+    constructor(mesh, capacity) {
+        this.mesh = mesh;
+        this.array = new Float32Array(16 * capacity);
+    }
+    set needsUpdate(value) {
+        if (value) this.mesh.spread(0, this.mesh.count);
+    }
+}
+
+// Per quad: four corners (3 floats each), six indices and four copies of its matrix (12 floats).
+const VERTEX_BYTES_PER_QUAD = 4 * (4 * 3 + 6 + 4 * 12);
+
+function quadGeometry(quads, old) {
+    const geometry = new THREE.BufferGeometry();
+    const positions = new Float32Array(12 * quads);
+    const index = new Uint32Array(6 * quads);
+    for (let q = 0; q < quads; ++q) {
+        for (let v = 0; v < 4; ++v) {
+            positions[12 * q + 3 * v] = CORNERS[2 * v];
+            positions[12 * q + 3 * v + 1] = CORNERS[2 * v + 1];
+        }
+        for (let k = 0; k < 6; ++k) index[6 * q + k] = 4 * q + TRIANGLES[k];
+    }
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+    geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    for (const name of ['quadX', 'quadY', 'quadZ']) {
+        const array = new Float32Array(16 * quads);
+        if (old) array.set(old.attributes[name].array);
+        const attribute = new THREE.BufferAttribute(array, 4);
+        attribute.setUsage(THREE.DynamicDrawUsage);
+        geometry.setAttribute(name, attribute);
+    }
+    if (old) geometry.setDrawRange(old.drawRange.start, old.drawRange.count);
+    return geometry;
+}
+
+export class ImpostorQuads extends THREE.Mesh {
+    // `capacity`: the most quads it may draw. Its vertices grow with the quads it has drawn, as
+    // most terminals of a batch are never at this LOD.
+    constructor(material, capacity) {
+        super(quadGeometry(0, null), material);
+        this.capacity = capacity;
+        this.instanceMatrix = new QuadMatrices(this, capacity);
+        this.count = capacity;
+        this.frustumCulled = false;
+    }
+
+    get count() {
+        return this.geometry.drawRange.count / 6;
+    }
+    set count(quads) {
+        this.geometry.setDrawRange(0, 6 * Math.min(quads, this.capacity));
+    }
+
+    // Bytes held for the GPU: the quads' matrices and the vertices grown so far.
+    get bytes() {
+        return this.instanceMatrix.array.byteLength + VERTEX_BYTES_PER_QUAD * (this.geometry.index.count / 6);
+    }
+
+    setMatrixAt(quad, matrix) {
+        this.instanceMatrix.array.set(matrix.elements, 16 * quad);
+        this.spread(quad, quad + 1);
+    }
+
+    // Copies quads [first, end) from the matrices to their four vertices each.
+    spread(first, end) {
+        end = Math.min(end, this.capacity);
+        const held = this.geometry.index.count / 6;
+        if (end > held) {
+            const old = this.geometry;
+            this.geometry = quadGeometry(Math.min(this.capacity, Math.max(end, 2 * held, 64)), old);
+            old.dispose();
+        }
+        const m = this.instanceMatrix.array;
+        const columns = ['quadX', 'quadY', 'quadZ'].map((name) => this.geometry.attributes[name]);
+        for (let c = 0; c < 3; ++c) {
+            const out = columns[c].array;
+            for (let q = first; q < end; ++q) {
+                const o = 16 * q;
+                const x = m[o + 4 * c], y = m[o + 4 * c + 1], z = m[o + 4 * c + 2], w = m[o + 12 + c];
+                for (let v = 0; v < 4; ++v) {
+                    const at = 16 * q + 4 * v;
+                    out[at] = x;
+                    out[at + 1] = y;
+                    out[at + 2] = z;
+                    out[at + 3] = w;
+                }
+            }
+            columns[c].needsUpdate = true;
+        }
+    }
+
+    dispose() {
+        this.geometry.dispose();
+    }
+}
