@@ -3,7 +3,8 @@
 // frames rendered by hand, each timed until a one-pixel readPixels returns (so the time
 // includes the GL work, which gl.finish() in chromium does not wait for):
 // - the whole frame;
-// - the frame without the impostor meshes (LOD2 and LOD3, and the tree billboards);
+// - the frame without the impostor meshes (LOD2 and LOD3, and the tree billboards), and
+//   without the tree billboards alone;
 // - the whole frame with a one-pixel scissor, which leaves the vertex and primitive work and
 //   drops nearly all of the fill.
 // Prints one JSON object, times in milliseconds (median of 5 frames each).
@@ -39,7 +40,7 @@ try {
         };
         const impostors = [];
         world.scene.traverse((o) => {
-            // Terminal impostors (merged quads) and tree billboards (instanced) both sample atlases.
+            // Terminal impostors and tree billboards both sample atlases.
             if (o.isMesh && o.visible && o.material?.uniforms?.atlasLayout) impostors.push(o);
         });
         const out = {
@@ -51,6 +52,11 @@ try {
         impostors.forEach((o) => (o.visible = false));
         out.without_impostors_ms = median();
         impostors.forEach((o) => (o.visible = true));
+        const billboards = impostors.filter((o) => !o.material.uniforms.nominal); // terminals' have a nominal size
+        out.tree_billboards = billboards.reduce((sum, o) => sum + o.count, 0);
+        billboards.forEach((o) => (o.visible = false));
+        out.without_tree_billboards_ms = median();
+        billboards.forEach((o) => (o.visible = true));
         world.renderer.setScissorTest(true);
         world.renderer.setScissor(0, 0, 1, 1);
         out.one_pixel_scissor_ms = median();

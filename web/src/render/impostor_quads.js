@@ -33,6 +33,8 @@ class QuadMatrices {
 
 // Per quad: four corners (3 floats each), six indices and four copies of its matrix (12 floats).
 const VERTEX_BYTES_PER_QUAD = 4 * (4 * 3 + 6 + 4 * 12);
+// Per quad drawn: its matrix and its vertices.
+export const BYTES_PER_QUAD = 64 + VERTEX_BYTES_PER_QUAD;
 
 function quadGeometry(quads, old) {
     const geometry = new THREE.BufferGeometry();

@@ -9,6 +9,7 @@
 import * as THREE from 'three';
 
 import { movedEnough } from '../stream/lod_policy.js';
+import { BYTES_PER_QUAD } from './impostor_quads.js';
 
 export class TreeBillboards {
     // `set`: a decoded extruded set of a tree grammar; `species`: a TreeImpostors.
@@ -38,7 +39,7 @@ export class TreeBillboards {
             else perSpecies.set(s, (perSpecies.get(s) ?? 0) + 1);
         }
         this.treeIds = buildings.id;
-        this.meshes = new Map(); // species index -> InstancedMesh, `count` the billboards drawn
+        this.meshes = new Map(); // species index -> ImpostorQuads, `count` the billboards drawn
         for (const [s, capacity] of perSpecies) {
             const mesh = species.makeMesh(s, capacity);
             this.meshes.set(s, mesh);
@@ -49,7 +50,8 @@ export class TreeBillboards {
         this.version = 0; // grows whenever the cut changes
         this.lastCamera = null;
         this.lastDistance = -1;
-        this.gpuBytes = 64 * (n - this.unmatched);
+        // Each billboard's matrix and, once drawn, its quad's vertices.
+        this.gpuBytes = BYTES_PER_QUAD * (n - this.unmatched);
     }
 
     isBillboard(treeId) {

@@ -10,6 +10,7 @@
 // stored normals light it with the scene's sun.
 import * as THREE from 'three';
 
+import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
 import { loadTexture } from './impostors.js';
 import { FULL_SPHERE, IMPOSTOR_ATLAS_GLSL, TREE_VIEWS_GLSL, VIEW_BLEND_GLSL } from './impostor_views.js';
 
@@ -22,6 +23,7 @@ out vec2 vUv0, vUv1, vUv2, vUv3;
 // Clip position of the quad point and of one radius toward the camera: the point a view's
 // depth d stands for is at vClip + d * vClipForward (clip space is linear in the position).
 out vec4 vClip, vClipForward;
+${QUAD_MATRIX_GLSL}
 ${TREE_VIEWS_GLSL}
 ${VIEW_BLEND_GLSL}
 vec2 viewUv(float view, vec3 q) {
@@ -30,8 +32,8 @@ vec2 viewUv(float view, vec3 q) {
     return vec2(dot(q, right), dot(q, up));
 }
 void main() {
-    // Trees stand upright and unrotated: the instance matrix only carries the tree's base.
-    vec3 centre = (modelMatrix * vec4(instanceMatrix[3].xyz + sphere.xyz, 1.0)).xyz;
+    // Trees stand upright and unrotated: the quad's matrix only carries the tree's base.
+    vec3 centre = (modelMatrix * vec4(quadMatrix()[3].xyz + sphere.xyz, 1.0)).xyz;
     vec3 forward = cameraPosition - centre;
     forward = dot(forward, forward) > 1e-12 ? normalize(forward) : vec3(0.0, 0.0, 1.0);
     float grid = atlasLayout.x;
@@ -91,7 +93,6 @@ export class TreeImpostors {
         this.byKey = new Map();
         this.failed = [];
         this.enabled = !!scene.capabilities?.tree_billboards && this.layout?.sphere === FULL_SPHERE;
-        this.quad = new THREE.PlaneGeometry(2, 2);
         this.generation = 0; // grows with every species added after the start
         this.adding = new Set(); // species indices being loaded by add()
         this.isReady = false;
@@ -165,14 +166,13 @@ export class TreeImpostors {
         return species.material;
     }
 
-    // Room for `capacity` billboards of species `index`: instance i is drawn at the translation
-    // of its matrix (a tree's base, cell-local), `count` of them.
+    // Room for `capacity` billboards of species `index`: quad i is drawn at the translation of
+    // its matrix (a tree's base, cell-local), `count` of them (merged quads, impostor_quads.js).
     makeMesh(index, capacity) {
-        const mesh = new THREE.InstancedMesh(this.quad, this.material(index), capacity);
+        const mesh = new ImpostorQuads(this.material(index), capacity);
         const m = mesh.instanceMatrix.array;
         for (let i = 0; i < capacity; ++i) m[16 * i] = m[16 * i + 5] = m[16 * i + 10] = m[16 * i + 15] = 1;
-        mesh.count = 0;
-        mesh.frustumCulled = false; // the cell's bounds decide visibility
+        mesh.count = 0; // the cell's bounds decide visibility (ImpostorQuads are never frustum-culled)
         mesh.raycast = () => {}; // a click on a far tree selects the ground's cell
         return mesh;
     }
