@@ -116,6 +116,15 @@ TEST_F(Lod1Test, ArgumentsReadParametersLoadedOncePerPixel) {
 
 class Lod1GpuTest : public render::GlTest {};
 
+// The LOD1 program as the renderer builds it, over a grammar's generated GLSL.
+render::ShaderProgram lod1Program(const std::string& grammarGlsl, std::string& error) {
+    render::ShaderLibrary library = lodShaderLibrary();
+    library.add("lod1_grammar.glsl", grammarGlsl);
+    return render::ShaderProgram::build(
+        library, {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "lod1.frag"}},
+        "", error);
+}
+
 // The generated interpreter links whatever parameters a grammar has: none at all, or one no
 // expression reads (lod1LoadParameters then loads nothing, or leaves it out).
 TEST_F(Lod1GpuTest, InterpretersLinkWithoutParametersOrWithUnreadOnes) {
@@ -138,12 +147,7 @@ TEST_F(Lod1GpuTest, InterpretersLinkWithoutParametersOrWithUnreadOnes) {
         const std::string glsl = generateLod1Grammar(g);
         EXPECT_EQ(glsl.find("lod1Params[first + 0u]"), std::string::npos) << "no expression reads 'unused'";
         std::string error;
-        render::ShaderLibrary library = lodShaderLibrary();
-        library.add("lod1_grammar.glsl", glsl);
-        render::ShaderProgram program = render::ShaderProgram::build(
-            library,
-            {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "lod1.frag"}}, "",
-            error);
+        render::ShaderProgram program = lod1Program(glsl, error);
         EXPECT_TRUE(program.valid()) << error << "\n" << glsl;
     }
 }
@@ -166,11 +170,7 @@ TEST_F(Lod1GpuTest, TheGlslWalkFindsWhatTheCpuWalkFinds) {
     ASSERT_FALSE(elements.empty());
 
     std::string error;
-    render::ShaderLibrary library = lodShaderLibrary();
-    library.add("lod1_grammar.glsl", generateLod1Grammar(g));
-    render::ShaderProgram program = render::ShaderProgram::build(
-        library, {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "lod1.frag"}},
-        "", error);
+    render::ShaderProgram program = lod1Program(generateLod1Grammar(g), error);
     ASSERT_TRUE(program.valid()) << error;
 
     // Look at the first element's facade straight on, from 40 m in front of its middle.

@@ -62,7 +62,6 @@ export class TerminalBatch {
         if (treeCut) for (const run of this.runs) run.records ??= new Uint32Array(run.count);
         this.lastCut = -1;
         this.baseBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
-        this.gpuBytes = this.baseBytes + this.impostorBytes();
         // Without impostors or a tree cut the lists never change: the instance buffers hold all there is.
         if (!this.sorted) this.matrices = this.frames = this.sizes = null;
     }
@@ -128,12 +127,12 @@ export class TerminalBatch {
             run.lod4.userData.records = run.records ?? null;
         }
         this.counts = counts;
-        this.gpuBytes = this.baseBytes + this.impostorBytes();
     }
 
-    // The impostor quads' bytes, which grow with the most quads a LOD has drawn.
-    impostorBytes() {
-        let bytes = 0;
+    // Bytes for the GPU: the matrices and the impostor quads, which grow with the most quads a
+    // LOD has drawn.
+    get gpuBytes() {
+        let bytes = this.baseBytes;
         for (const run of this.runs) bytes += (run.lod3?.bytes ?? 0) + (run.lod2?.bytes ?? 0);
         return bytes;
     }
