@@ -57,6 +57,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"cull_occluded_terminals", f.cullOccludedTerminals},
         {"volumes_occluded", f.volumesOccluded},
         {"volumes_built", f.volumesBuilt},
+        {"volume_buildings_occluded", f.volumeBuildingsOccluded},
         {"batches_drawn", f.batchesDrawn},
         {"batches_pending", f.batchesPending},
         {"batches_rejected", f.batchesRejected},

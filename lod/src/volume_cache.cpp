@@ -73,8 +73,8 @@ const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset) {
     }
     const auto start = std::chrono::steady_clock::now();
     const grammar::ExtrudedSet extruded = catalog_.expandExtruded(batch);
-    const render::TerminalMesh shell = render::buildBaseVolumes(extruded, inset);
     VolumeMesh mesh;
+    const render::TerminalMesh shell = render::buildBaseVolumes(extruded, inset, &mesh.buildings);
     mesh.cellOrigin = catalog_.cellOrigin(catalog_.batch(batch).cell);
     mesh.grammar = catalog_.batch(batch).grammar;
     if (inset == 0.0f) {
@@ -87,7 +87,7 @@ const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset) {
     mesh.lastUsed = frame_;
     mesh.indexCount = uint32_t(shell.indices.size());
     render::vertexBounds(shell.vertices, mesh.boundsMin, mesh.boundsMax);
-    mesh.bytes += shell.byteSize();
+    mesh.bytes += shell.byteSize() + mesh.buildings.size() * sizeof(render::VolumeBuilding);
     mesh.vertexBuffer = storage(shell.vertices.data(), shell.vertices.size() * sizeof(render::MeshVertex));
     mesh.indexBuffer = storage(shell.indices.data(), shell.indices.size() * sizeof(uint32_t));
     gl::glCreateVertexArrays(1, &mesh.vao);

@@ -32,7 +32,15 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
             });
             timer.restart(); // the tiles belong to no pass
         }
-        for (VolumeDraw& draw : draws) draw.mesh = &volumes_.acquire(draw.batch, draw.inset);
+        for (VolumeDraw& draw : draws) {
+            draw.mesh = &volumes_.acquire(draw.batch, draw.inset);
+            // Building by building too: at street level a batch that shows at all often shows
+            // a few of its buildings only, and with multisampling llvmpipe shades every
+            // fragment it rasterises, hidden or not (it skips hidden ones only at one sample).
+            draw.runs = test && !tiles.empty()
+                            ? visibleBuildingRuns(draw, pose.position, occlusion, tiles, stats)
+                            : std::vector<glm::uvec2>{{0u, draw.mesh->indexCount}};
+        }
         drawVolumes(draws, pose.position, stats, timer);
         drawnSinceTiles = drawnSinceTiles || !draws.empty();
     }
@@ -55,24 +63,61 @@ bool CityRenderer::volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera
     return tilesHideBox(occlusion, &tiles, lo, hi);
 }
 
+std::vector<glm::uvec2> CityRenderer::visibleBuildingRuns(const VolumeDraw& draw, const glm::dvec3& camera,
+                                                          const shared::CullFrame& occlusion,
+                                                          const std::vector<float>& tiles,
+                                                          FrameStats& stats) const {
+    const glm::vec3 origin(draw.mesh->cellOrigin - camera);
+    std::vector<glm::uvec2> runs;
+    for (const render::VolumeBuilding& building : draw.mesh->buildings) {
+        if (tilesHideBox(occlusion, &tiles, origin + building.boundsMin, origin + building.boundsMax)) {
+            ++stats.volumeBuildingsOccluded;
+            continue;
+        }
+        if (!runs.empty() && runs.back().x + runs.back().y == building.firstIndex)
+            runs.back().y += building.indexCount;
+        else
+            runs.emplace_back(building.firstIndex, building.indexCount);
+    }
+    return runs;
+}
+
+// One draw per run; a single run is the common case (the whole mesh, or every building left).
+void CityRenderer::drawRuns(const VolumeDraw& draw, FrameStats& stats) {
+    gl::glBindVertexArray(draw.mesh->vao);
+    if (draw.runs.size() == 1) {
+        gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.runs[0].y), GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(uintptr_t(draw.runs[0].x) * sizeof(uint32_t)));
+    } else {
+        std::vector<GLsizei> counts;
+        std::vector<const void*> offsets;
+        for (const glm::uvec2& run : draw.runs) {
+            counts.push_back(GLsizei(run.y));
+            offsets.push_back(reinterpret_cast<const void*>(uintptr_t(run.x) * sizeof(uint32_t)));
+        }
+        gl::glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(),
+                                GLsizei(counts.size()));
+    }
+    for (const glm::uvec2& run : draw.runs) stats.triangles += run.y / 3;
+    ++stats.draws;
+}
+
 void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
                                FrameStats& stats, PassTimer& timer) {
     // LOD0 first with one program, then LOD1 grammar by grammar.
     programs_->volume.use();
     for (const VolumeDraw& draw : volumes) {
-        if (draw.mesh->indexCount == 0 || draw.lod0Blend < 1.0f) continue;
+        if (draw.mesh->indexCount == 0 || draw.runs.empty() || draw.lod0Blend < 1.0f) continue;
         programs_->volume.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
         programs_->volume.set("texturedWalls", uint32_t(draw.textured));
-        gl::glBindVertexArray(draw.mesh->vao);
-        gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.mesh->indexCount), GL_UNSIGNED_INT, nullptr);
-        stats.triangles += draw.mesh->indexCount / 3;
-        ++stats.draws;
+        drawRuns(draw, stats);
     }
     timer.end(DrawPass::Lod0);
     for (const auto& [grammar, program] : programs_->lod1) {
         bool bound = false;
         for (const VolumeDraw& draw : volumes) {
-            if (draw.mesh->indexCount == 0 || draw.lod0Blend >= 1.0f || draw.mesh->grammar != grammar)
+            if (draw.mesh->indexCount == 0 || draw.runs.empty() || draw.lod0Blend >= 1.0f ||
+                draw.mesh->grammar != grammar)
                 continue;
             if (!bound) {
                 program.use();
@@ -87,10 +132,7 @@ void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm
             program.set("lod0Blend", draw.lod0Blend);
             gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, draw.mesh->parameterBuffer);
             gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, draw.mesh->elementBuffer);
-            gl::glBindVertexArray(draw.mesh->vao);
-            gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.mesh->indexCount), GL_UNSIGNED_INT, nullptr);
-            stats.triangles += draw.mesh->indexCount / 3;
-            ++stats.draws;
+            drawRuns(draw, stats);
         }
     }
     gl::glBindVertexArray(0);

@@ -66,10 +66,14 @@ uint32_t wallMaterialColour(uint16_t material) {
     return kWallColours[material % 8];
 }
 
-TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset) {
+TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset,
+                              std::vector<VolumeBuilding>* buildings) {
     MeshBuilder b(glm::vec3(1.0f)); // metres stay metres
     std::vector<WallTag> tags;
+    std::vector<std::pair<size_t, size_t>> vertexRanges; // per entry of *buildings
+    if (buildings) buildings->clear();
     for (const grammar::ExtrudedBuilding& building : set.buildings) {
+        const size_t firstTriangle = b.triangleCount(), firstVertex = b.vertexCount();
         // Bands keyed by stop rule and elevation in millimetres.
         std::map<std::pair<uint32_t, long long>, std::vector<const grammar::ExtrudedElement*>> bands;
         for (uint32_t i = 0; i < building.elementCount; ++i) {
@@ -81,8 +85,18 @@ TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset) {
             if (faces.size() >= 3)
                 band(b, set, std::move(faces), inset, wallMaterialColour(building.wallMaterial), tags);
         }
+        if (buildings && b.triangleCount() > firstTriangle) {
+            buildings->push_back(
+                {uint32_t(3 * firstTriangle), uint32_t(3 * (b.triangleCount() - firstTriangle))});
+            vertexRanges.emplace_back(firstVertex, b.vertexCount());
+        }
     }
     TerminalMesh mesh = b.finish("base_volume", "extruded set");
+    for (size_t i = 0; i < vertexRanges.size(); ++i) {
+        const auto& [first, end] = vertexRanges[i];
+        vertexBounds(std::span(mesh.vertices).subspan(first, end - first), (*buildings)[i].boundsMin,
+                     (*buildings)[i].boundsMax);
+    }
     // uv: (element index, 1) on walls, (-1, 0) elsewhere (caps): LOD1 resumes the grammar of
     // the element a wall pixel shows.
     for (MeshVertex& v : mesh.vertices) v.uv = glm::vec2(-1.0f, 0.0f);

@@ -58,7 +58,7 @@ glm::vec4 unpackRgba(uint32_t rgba) {
            255.0f;
 }
 
-void vertexBounds(const std::vector<MeshVertex>& vertices, glm::vec3& lo, glm::vec3& hi) {
+void vertexBounds(std::span<const MeshVertex> vertices, glm::vec3& lo, glm::vec3& hi) {
     lo = glm::vec3(std::numeric_limits<float>::max());
     hi = glm::vec3(std::numeric_limits<float>::lowest());
     for (const MeshVertex& v : vertices) {

@@ -105,7 +105,8 @@ TEST(RenderCli, WalkKeepsHiddenWorkWhenAskedAndDrawsTheSameFrames) {
     const Json frames = Json::parse(std::ifstream(dir + "/kept/frames.json"));
     ASSERT_EQ(frames.size(), 2u);
     for (const Json& frame : frames)
-        for (const char* key : {"cull_occluded_terminals", "tree_billboards_occluded", "lod3_occluded"})
+        for (const char* key : {"cull_occluded_terminals", "tree_billboards_occluded", "lod3_occluded",
+                                "volumes_occluded", "volume_buildings_occluded"})
             EXPECT_EQ(frame[key], 0) << key;
     const auto bytes = [](const std::string& file) {
         std::ifstream in(file, std::ios::binary);

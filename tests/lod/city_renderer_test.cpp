@@ -246,7 +246,7 @@ TEST_F(CityRendererTest, HiddenImpostorsAndBillboardsAreDroppedWithoutChangingAP
     }
 }
 
-TEST_F(CityRendererTest, FarBaseVolumesTheNearOnesHideAreNotDrawnAndNoPixelChanges) {
+TEST_F(CityRendererTest, FarBaseVolumesAndBuildingsTheNearOnesHideAreNotDrawnAndNoPixelChanges) {
     // At street level, with LOD0 claiming 1 m so that the cells within 42 m form the first
     // ring of volumes: the block in front hides half the far cells' volumes, drawn at LOD0 or
     // ray-cast at LOD1, and those are never built.
@@ -262,15 +262,20 @@ TEST_F(CityRendererTest, FarBaseVolumesTheNearOnesHideAreNotDrawnAndNoPixelChang
             Rendered all = render(city, impostors, mode, pose, 1, samples, false, lod);
             Rendered culled = render(city, impostors, mode, pose, 1, samples, true, lod);
             EXPECT_EQ(all.stats.volumesOccluded, 0u) << what;
+            EXPECT_EQ(all.stats.volumeBuildingsOccluded, 0u) << what;
             EXPECT_GT(culled.stats.volumesOccluded, 0u) << what;
+            // Of the batches that show, some buildings do not: those are left out one by one.
+            EXPECT_GT(culled.stats.volumeBuildingsOccluded, 0u) << what;
             EXPECT_LT(culled.stats.volumesOccluded, culled.stats.batchesDrawn) << what;
             EXPECT_LT(culled.stats.triangles, all.stats.triangles) << what;
             // A hidden batch is not even built: the test used its cell's bounds.
             EXPECT_EQ(all.stats.volumesBuilt, all.stats.batchesDrawn) << what;
             EXPECT_EQ(culled.stats.volumesBuilt + culled.stats.volumesOccluded, all.stats.volumesBuilt)
                 << what;
-            std::printf("%s: %u of %u batches' volumes hidden, %llu of %llu triangles drawn\n", what.c_str(),
-                        culled.stats.volumesOccluded, culled.stats.batchesDrawn,
+            std::printf("%s: %u of %u batches' volumes hidden, and %u buildings of the others; %llu of %llu "
+                        "triangles drawn\n",
+                        what.c_str(), culled.stats.volumesOccluded, culled.stats.batchesDrawn,
+                        culled.stats.volumeBuildingsOccluded,
                         static_cast<unsigned long long>(culled.stats.triangles),
                         static_cast<unsigned long long>(all.stats.triangles));
             EXPECT_EQ(culled.image.pixels, all.image.pixels) << what;

@@ -106,5 +106,47 @@ TEST(BaseVolumes, FollowTheSetbacksOfTheExtrudedSet) {
     EXPECT_NEAR(inset.boundsMax.y, 9.5f, 1e-4f);
 }
 
+TEST(BaseVolumes, ListEachBuildingsRunOfIndicesAndItsBounds) {
+    // The tower, a building with only two walls (no closed band: no triangles, no part), and
+    // the tower again 100 m along x.
+    const grammar::ExtrudedSet tower = steppedTower();
+    grammar::ExtrudedSet set = tower;
+    grammar::ExtrudedBuilding open;
+    open.firstElement = uint32_t(set.elements.size());
+    open.elementCount = 2;
+    set.elements.insert(set.elements.end(), tower.elements.begin(), tower.elements.begin() + 2);
+    set.buildings.push_back(open);
+    grammar::ExtrudedBuilding moved = tower.buildings[0];
+    moved.firstElement = uint32_t(set.elements.size());
+    for (grammar::ExtrudedElement e : tower.elements) {
+        e.origin.x += 100.0f;
+        set.elements.push_back(e);
+    }
+    set.buildings.push_back(moved);
+
+    std::vector<VolumeBuilding> parts;
+    const TerminalMesh m = buildBaseVolumes(set, 0.0f, &parts);
+    EXPECT_EQ(m.indices, buildBaseVolumes(set, 0.0f).indices) << "listing the parts changes no triangle";
+    ASSERT_EQ(parts.size(), 2u);
+    EXPECT_EQ(parts[0].firstIndex, 0u);
+    EXPECT_EQ(parts[1].firstIndex, parts[0].indexCount);
+    EXPECT_EQ(parts[0].indexCount + parts[1].indexCount, m.indices.size());
+    EXPECT_EQ(parts[0].indexCount, parts[1].indexCount);
+    EXPECT_NEAR(parts[0].boundsMin.x, 0.0f, 1e-4f);
+    EXPECT_NEAR(parts[0].boundsMax.x, 20.0f, 1e-4f);
+    EXPECT_NEAR(parts[1].boundsMin.x, 100.0f, 1e-4f);
+    EXPECT_NEAR(parts[1].boundsMax.z, 50.0f, 1e-4f);
+    for (const VolumeBuilding& part : parts) {
+        for (uint32_t i = part.firstIndex; i < part.firstIndex + part.indexCount; ++i) {
+            const glm::vec3 p = m.vertices[m.indices[i]].position;
+            EXPECT_TRUE(glm::all(glm::greaterThanEqual(p, part.boundsMin)) &&
+                        glm::all(glm::lessThanEqual(p, part.boundsMax)));
+        }
+    }
+    // A set without buildings has no part; the list is emptied first.
+    buildBaseVolumes(grammar::ExtrudedSet{}, 0.0f, &parts);
+    EXPECT_TRUE(parts.empty());
+}
+
 } // namespace
 } // namespace hexlod::render

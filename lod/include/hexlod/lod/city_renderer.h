@@ -88,6 +88,8 @@ struct FrameStats {
     // Batches of base volumes of extruded cells not drawn (nor built, when not resident): the
     // nearer volumes' depth hides their box. volumesBuilt: base volume meshes built this frame.
     uint32_t volumesOccluded = 0, volumesBuilt = 0;
+    // Buildings of the batches drawn at LOD0 or LOD1 left out: the nearer volumes hide their box.
+    uint32_t volumeBuildingsOccluded = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint32_t treePoints = 0;                  // far trees submitted to the point pass
@@ -137,6 +139,9 @@ private:
         // distance; 2, beyond it. A ring draws only the batches whose box (the mesh's bounds
         // when it is resident, else the cell's) the depth of the rings before it does not hide.
         uint8_t ring;
+        // Set by drawVolumeRings: the runs (first index, count) of the mesh to draw, the whole
+        // mesh or, against the rings before, the buildings left in view, adjacent ones merged.
+        std::vector<glm::uvec2> runs = {};
     };
     static constexpr uint8_t kVolumeRings = 3;
     // LOD4 meshes; also counts every terminal drawn, per LOD, into stats.
@@ -150,8 +155,14 @@ private:
     // Whether the tiles hide the batch's box: its mesh's bounds when resident, else its cell's.
     bool volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera, const shared::CullFrame& occlusion,
                       const std::vector<float>& tiles) const;
+    // The runs of draw.mesh's buildings the tiles leave in view (none: all hidden); counts the
+    // hidden ones into stats.
+    std::vector<glm::uvec2> visibleBuildingRuns(const VolumeDraw& draw, const glm::dvec3& camera,
+                                                const shared::CullFrame& occlusion,
+                                                const std::vector<float>& tiles, FrameStats& stats) const;
     void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats,
                      PassTimer& timer);
+    static void drawRuns(const VolumeDraw& draw, FrameStats& stats);
 
     cells::BatchCatalog& catalog_;
     cache::TerminalSetCache& cache_;

@@ -5,9 +5,11 @@
 #pragma once
 
 #include "hexlod/cells/batch_catalog.h"
+#include "hexlod/render/base_volume_mesh.h"
 
 #include <cstdint>
 #include <unordered_map>
+#include <vector>
 
 namespace hexlod::lod {
 
@@ -21,6 +23,8 @@ struct VolumeMesh {
     glm::dvec3 cellOrigin{0.0};
     // Cell-local bounds of its vertices, for the occlusion test (min > max: no vertex).
     glm::vec3 boundsMin{1.0f}, boundsMax{0.0f};
+    // Each building's run of indices and bounds, for the same test building by building.
+    std::vector<render::VolumeBuilding> buildings;
     uint64_t lastUsed = 0;
 };
 

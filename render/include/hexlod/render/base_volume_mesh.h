@@ -11,7 +11,20 @@
 #include "hexlod/grammar/extruded_set.h"
 #include "hexlod/render/terminal_mesh.h"
 
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
 namespace hexlod::render {
+
+// One building's part of a base volume mesh: its run of indices (a building's triangles are
+// contiguous) and the cell-local bounds of its vertices, so that a renderer can leave out the
+// buildings that nearer geometry hides instead of the whole batch or nothing.
+struct VolumeBuilding {
+    uint32_t firstIndex = 0, indexCount = 0;
+    glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
+};
 
 // Wall colour of a wall material index (the grammars' `wall_material`, 0..7; others wrap).
 uint32_t wallMaterialColour(uint16_t material);
@@ -21,7 +34,9 @@ uint32_t wallMaterialColour(uint16_t material);
 // far inwards (0 for LOD0; about half a metre under terminals, so that recessed glass stays in
 // front of the shell instead of z-fighting with it); a band too small to inset keeps its outline.
 // A wall's uv is (index of its element in set.elements, 1), every other vertex's (-1, 0): LOD1
-// resumes that element's grammar per pixel.
-TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset);
+// resumes that element's grammar per pixel. With `buildings`, also each building's part, in
+// index order (buildings without a closed band have none).
+TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset,
+                              std::vector<VolumeBuilding>* buildings = nullptr);
 
 } // namespace hexlod::render

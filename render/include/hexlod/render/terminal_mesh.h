@@ -26,6 +26,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -60,7 +61,7 @@ uint32_t packRgba(float r, float g, float b, float a = 1.0f);
 glm::vec4 unpackRgba(uint32_t rgba);
 
 // The bounds of the vertices' positions; with no vertex, lo > hi.
-void vertexBounds(const std::vector<MeshVertex>& vertices, glm::vec3& lo, glm::vec3& hi);
+void vertexBounds(std::span<const MeshVertex> vertices, glm::vec3& lo, glm::vec3& hi);
 
 // Recomputes boundsMin/boundsMax (zero with no vertex) and contentHash from the vertices and
 // indices.
