@@ -122,4 +122,8 @@ ScratchRelease::~ScratchRelease() {
     if (scratch().capacity() > kKeptScratchBytes) scratch().release();
 }
 
+size_t threadScratchBytes() {
+    return scratch().capacity();
+}
+
 } // namespace hexlod::grammar::detail

@@ -50,5 +50,7 @@ struct ScratchRelease {
     ScratchRelease& operator=(const ScratchRelease&) = delete;
     ~ScratchRelease();
 };
+// The bytes of scratch this thread holds now (what a ScratchRelease leaves it is testable).
+size_t threadScratchBytes();
 
 } // namespace hexlod::grammar::detail
