@@ -1,7 +1,8 @@
 // The viewer's LOD policy against the native one (cells/src/scheduler.cpp, lod/src/cull_inputs.cpp,
 // lod/include/hexlod/lod/cull_shared.h): the screen-space error formula, the hysteresis band, the
-// distance to a cell's bounds, the per-terminal LOD distances and the backface rule; and when a
-// moved camera re-decides them.
+// distance to a cell's bounds, the per-terminal LOD distances and the backface rule; the view
+// test that leaves terminals outside the frustum out; and when a moved or turned camera
+// re-decides them.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
@@ -13,10 +14,14 @@ import {
     lodDistance,
     movedEnough,
     nextCellLod,
+    outsideView,
     screenSpaceError,
     TERMINALS,
     terminalLodDistances,
+    TURN_MARGIN,
+    turnedEnough,
 } from '../src/stream/lod_policy.js';
+import { degrees, viewAlong } from './views.js';
 
 const profile = { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] };
 const camera = { position: [0, 0, 10], fovY: Math.PI / 3, viewportHeight: 720 };
@@ -71,4 +76,42 @@ test('a distance decision is re-made once the camera moves 2 % of the distance, 
     assert.equal(movedEnough([0, 0, 0], [0, 2, 0], 100), true);
     assert.equal(movedEnough([0, 0, 0], [0, 0, 0.4], 1), false); // the half-metre floor
     assert.equal(movedEnough([0, 0, 0], [0, 0, 0.5], 1), true);
+});
+
+const alongY = viewAlong([0, 1, 0]);
+
+test('a terminal outside the view, with the turn margin, is left out', () => {
+    assert.equal(TURN_MARGIN, degrees(10));
+    assert.equal(outsideView(alongY, 0, 100, 0, 1), false); // ahead
+    assert.equal(outsideView(alongY, 0, -100, 0, 1), true); // behind
+    assert.equal(outsideView(alongY, 0, -1, 0, 2), false); // behind, but reaching into the view
+    // 5 degrees past the 45 degree edge is within the margin; 15 degrees is not.
+    const at = (a) => [100 * Math.sin(degrees(a)), 100 * Math.cos(degrees(a)), 0];
+    assert.equal(outsideView(alongY, ...at(50), 0.1), false);
+    assert.equal(outsideView(alongY, ...at(60), 0.1), true);
+    assert.equal(outsideView(alongY, ...at(-60), 0.1), true);
+    // The radius counts: a large sphere whose edge reaches the widened plane stays.
+    assert.equal(outsideView(alongY, ...at(60), 20), false);
+    // Above and below too.
+    assert.equal(outsideView(alongY, 0, 100, 150, 1), true);
+    assert.equal(outsideView(alongY, 0, 100, -150, 1), true);
+});
+
+test('classifyTerminal culls a terminal outside the view, widened by the camera\'s slack', () => {
+    const { lod3, lod2 } = terminalLodDistances(profile, camera);
+    const axes = [1, 0, 0, 0, 0, 1, 0, -1, 0]; // a 2 x 3 m terminal on a wall facing -y
+    const corner = (x, y) => [x - 1, y, -1.5]; // centre (x, y, 0) relative to the camera
+    assert.equal(classifyTerminal(corner(0, 10), axes, 2, 3, 0.3, { lod3, lod2 }, true, alongY), 4);
+    assert.equal(classifyTerminal(corner(0, 10), axes, 2, 3, 0.3, { lod3, lod2 }, true, null), 4);
+    // 60 m to the side at 15 m ahead: outside (76 degrees off the axis), but not with 50 m of slack.
+    assert.equal(classifyTerminal(corner(60, 15), axes, 2, 3, 0.3, { lod3, lod2 }, true, alongY), 0);
+    assert.equal(classifyTerminal(corner(60, 15), axes, 2, 3, 0.3, { lod3, lod2 }, true, alongY, 50), 4);
+});
+
+test('a view decision is re-made once the view turns by half the margin', () => {
+    const turned = (d) => [Math.sin(degrees(d)), Math.cos(degrees(d)), 0];
+    assert.equal(turnedEnough(null, [0, 1, 0]), true);
+    assert.equal(turnedEnough([0, 1, 0], turned(4.9)), false);
+    assert.equal(turnedEnough([0, 1, 0], turned(5.1)), true);
+    assert.equal(turnedEnough([0, 1, 0], [0, -1, 0]), true);
 });

@@ -4,13 +4,14 @@
 // from its quaternion (4 x snorm16), S = (w, h, d) with d = depthRatio · min(w, h) (flat shapes
 // get a hair of depth so the matrix stays invertible for normals). With impostors, terminals
 // are re-sorted into the three lists by lod_policy.classifyTerminal whenever the camera has
-// moved enough for the decision to change (a CPU stand-in for the native renderer's GPU pass);
+// moved or turned enough for the decision to change, leaving out those behind their wall or
+// outside the view (a CPU stand-in for the native renderer's GPU pass);
 // without them every terminal is LOD4 and the lists never change, unless a tree batch's cut
 // moves trees between terminals and billboards.
 import * as THREE from 'three';
 
 import { halfToFloat, quaternionAxes, snorm16ToFloat } from '../payload/record.js';
-import { classifyTerminal, movedEnough } from '../stream/lod_policy.js';
+import { classifyTerminal, movedEnough, turnedEnough } from '../stream/lod_policy.js';
 
 const FLAT_DEPTH = 1e-3;
 
@@ -58,6 +59,8 @@ export class TerminalBatch {
         }
         this.counts = { 4: n, 3: 0, 2: 0, culled: 0 };
         this.lastCamera = null;
+        this.lastForward = null;
+        this.lastViewKey = null;
         this.sorted = treeCut || this.runs.some((r) => r.lod3);
         if (treeCut) for (const run of this.runs) run.records ??= new Uint32Array(run.count);
         this.lastCut = -1;
@@ -89,13 +92,21 @@ export class TerminalBatch {
     }
 
     // `camera`: the camera position relative to this batch's cell origin (doubles); `cut`: the
-    // batch's TreeBillboards, whose billboard trees' terminals are left out, or null.
-    updateLod(camera, distances, cut = null) {
+    // batch's TreeBillboards, whose billboard trees' terminals are left out, or null; `view`:
+    // lod_policy's view, whose terminals outside it are left out too (null: none are).
+    updateLod(camera, distances, cut = null, view = null) {
         if (!this.sorted) return;
         const cutVersion = cut ? cut.version : -1;
-        if (cutVersion === this.lastCut && !movedEnough(this.lastCamera, camera, distances.lod3)) return;
+        const viewKey = view ? view.key : null;
+        if (cutVersion === this.lastCut && viewKey === this.lastViewKey &&
+            !movedEnough(this.lastCamera, camera, distances.lod3) && !(view && turnedEnough(this.lastForward, view.forward)))
+            return;
         this.lastCamera = camera.slice();
         this.lastCut = cutVersion;
+        this.lastViewKey = viewKey;
+        this.lastForward = view ? view.forward.slice() : null;
+        // How far the camera may move before the lists are sorted again (movedEnough).
+        const slack = Math.max(0.5, 0.02 * distances.lod3);
         const counts = { 4: 0, 3: 0, 2: 0, culled: 0 };
         const corner = [0, 0, 0], axes = new Float64Array(9);
         for (const run of this.runs) {
@@ -108,7 +119,7 @@ export class TerminalBatch {
                 corner[1] = f[k + 1] - camera[1];
                 corner[2] = f[k + 2] - camera[2];
                 for (let j = 0; j < 9; ++j) axes[j] = f[k + 3 + j];
-                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3);
+                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3, view, slack);
                 if (lod === 0) {
                     ++counts.culled;
                     continue;

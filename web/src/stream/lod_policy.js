@@ -63,14 +63,43 @@ export function movedEnough(last, camera, distance) {
     return Math.hypot(camera[0] - last[0], camera[1] - last[1], camera[2] - last[2]) >= Math.max(0.5, 0.02 * distance);
 }
 
+// The view a batch's terminal lists are sorted for, or null for no frustum test: `sides`, the
+// frustum's four side planes ({normal: [x, y, z], constant}, normals inward; three.js's
+// Frustum.planes[0..3]) with the camera at the origin, and `forward`, the unit view direction.
+// The lists are sorted with every side plane turned outwards by TURN_MARGIN radians, and sorted
+// again once the view has turned by half that (turnedEnough): a view turned by less than the
+// margin shows nothing the lists left out.
+export const TURN_MARGIN = (10 * Math.PI) / 180;
+
+export function turnedEnough(last, forward) {
+    if (!last) return true;
+    const cos = last[0] * forward[0] + last[1] * forward[1] + last[2] * forward[2];
+    return cos < Math.cos(0.5 * TURN_MARGIN);
+}
+
+// Whether the sphere (centre relative to the camera, radius) lies wholly outside one of the
+// view's side planes turned outwards by TURN_MARGIN. Turning a plane through the camera by an
+// angle a moves a point's signed distance to it by at most |point| sin a.
+export function outsideView(view, cx, cy, cz, radius) {
+    const slack = radius + Math.hypot(cx, cy, cz) * Math.sin(TURN_MARGIN);
+    for (const { normal, constant } of view.sides)
+        if (normal[0] * cx + normal[1] * cy + normal[2] * cz + constant < -slack) return true;
+    return false;
+}
+
 // 0 (culled), 2, 3 or 4 for a terminal whose scope corner is at `corner` relative to the camera,
-// with scope axes X, Y, Z (from quaternionAxes: nine numbers), size (w, h) and depth d.
-export function classifyTerminal(corner, axes, w, h, d, distances, impostors) {
+// with scope axes X, Y, Z (from quaternionAxes: nine numbers), size (w, h) and depth d. With a
+// `view`, a terminal outside it is culled too; `slack` (metres) widens that test by how far the
+// camera may move before the decision is made again.
+export function classifyTerminal(corner, axes, w, h, d, distances, impostors, view = null, slack = 0) {
     const cx = corner[0] + axes[0] * 0.5 * w + axes[3] * 0.5 * h;
     const cy = corner[1] + axes[1] * 0.5 * w + axes[4] * 0.5 * h;
     const cz = corner[2] + axes[2] * 0.5 * w + axes[5] * 0.5 * h;
     const inFront = -(axes[6] * corner[0] + axes[7] * corner[1] + axes[8] * corner[2]);
     if (inFront < -d) return 0;
+    // The scope box's half diagonal, doubled: a mesh may reach past its scope (a balcony's
+    // depth ratio is above 1), and an impostor quad covers the mesh's bounds.
+    if (view && outsideView(view, cx, cy, cz, Math.hypot(w, h, d) + slack)) return 0;
     if (!impostors) return 4;
     const distance = Math.sqrt(cx * cx + cy * cy + cz * cz);
     return distance >= distances.lod2 ? 2 : distance >= distances.lod3 ? 3 : 4;

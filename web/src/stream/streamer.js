@@ -145,6 +145,15 @@ export class Streamer {
         camera.updateMatrixWorld();
         this.frustum.setFromProjectionMatrix(new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse));
         const distances = terminalLodDistances(this.profile, view);
+        // The view the terminal lists are sorted for (lod_policy.outsideView): terminals outside
+        // it are not drawn at all, so they cost no vertex work, which a software rasteriser pays
+        // in full for every quad and instance it clips away.
+        const f = view.forward, length = Math.hypot(f[0], f[1], f[2]) || 1;
+        const terminalView = {
+            sides: this.frustum.planes.slice(0, 4).map((plane) => ({ normal: plane.normal.toArray(), constant: plane.constant })),
+            forward: [f[0] / length, f[1] / length, f[2] / length],
+            key: `${camera.fov} ${camera.aspect}`,
+        };
         // Trees are terminals only near the camera: beyond the distance at which the profile's
         // tree error stays under the budget they are billboards of their species' impostor
         // (updateTrees). As in the native renderer, a tree error of 0 keeps every tree of a
@@ -174,7 +183,7 @@ export class Streamer {
             const sse = Math.min(decision.sse, 1e6);
             const objects = [];
             const local = [p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]]; // the camera, cell-local
-            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests };
+            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests, view: terminalView };
             for (const b of cell.batches) {
                 if (this.grammar(b.grammar)?.kind === 'tree') {
                     this.updateTrees(b, decision, treeDistance, frame);
@@ -231,7 +240,7 @@ export class Streamer {
         const value = this.cache.get(term);
         frame.objects.push(this.object(term, value, 'terminals'));
         const bytes = value.terminals.gpuBytes;
-        value.terminals.updateLod(frame.local, frame.distances, cut);
+        value.terminals.updateLod(frame.local, frame.distances, cut, frame.view);
         // Impostor quads grow with what they draw.
         if (value.terminals.gpuBytes !== bytes) this.cache.grow(term, value.terminals.gpuBytes - bytes);
         if (frame.visible) for (const lod of [4, 3, 2]) frame.stats.terminals[lod] += value.terminals.counts[lod];

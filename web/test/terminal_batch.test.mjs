@@ -1,0 +1,75 @@
+// TerminalBatch's sorting of a terminal set into LOD4, LOD3 and LOD2 lists (src/render/
+// terminal_batch.js): terminals behind their wall or outside the view are left out, and the
+// lists are sorted again when the camera has moved or turned enough, not before.
+import assert from 'node:assert/strict';
+import test from 'node:test';
+import * as THREE from 'three';
+
+import { ImpostorQuads } from '../src/render/impostor_quads.js';
+import { TerminalBatch } from '../src/render/terminal_batch.js';
+import { degrees, viewAlong } from './views.js';
+
+const material = new THREE.MeshBasicMaterial();
+const HALF_ONE = 0x3c00, HALF_TWO = 0x4000, HALF_TENTH = 0x2e66;
+const SNORM_SQRT_HALF = 23170; // 0.7071 as snorm16
+
+// One shape's terminals, each a 1 x 2 m terminal on a wall facing -y (scope X = +x, Y = +z,
+// Z = -y: a quarter turn about x) with its corner at the given cell-local point.
+function setOf(corners) {
+    const n = corners.length;
+    const records = new Uint32Array(8 * n);
+    const positions = new Float32Array(records.buffer);
+    corners.forEach(([x, y, z], i) => {
+        positions.set([x, y, z], 8 * i);
+        records[8 * i + 3] = i; // building
+        records[8 * i + 4] = SNORM_SQRT_HALF; // x; y = 0
+        records[8 * i + 5] = SNORM_SQRT_HALF << 16; // z = 0; w
+        records[8 * i + 6] = HALF_ONE | (HALF_TWO << 16);
+        records[8 * i + 7] = HALF_TENTH << 16; // shape 0
+    });
+    return { cell: { q: 0, r: 0 }, grammar: 0, count: n, countPerShape: new Uint32Array([n]), records, positions };
+}
+
+const library = { grammar: { index: 0 }, shapes: [], shape: () => ({ geometry: new THREE.BoxGeometry() }) };
+const impostors = { atlasOf: () => ({}), makeMesh: (atlas, lod, capacity) => new ImpostorQuads(material, capacity) };
+const distances = { lod3: 100, lod2: 200 };
+const turned = (d) => [Math.sin(degrees(d)), Math.cos(degrees(d)), 0];
+
+// The records in the LOD4 list, in order.
+function lod4Records(batch) {
+    const run = batch.runs[0];
+    return Array.from(run.records.subarray(0, run.lod4.count));
+}
+
+test('terminals behind their wall or outside the view are left out of every list', () => {
+    // Ahead (y = 20), behind the camera and facing away (y = -20), far to the side (x = 60),
+    // and ahead beyond the LOD3 and LOD2 distances.
+    const batch = new TerminalBatch(setOf([[0, 20, 0], [0, -20, 0], [60, 15, 0], [0, 150, 0], [0, 250, 0]]),
+        library, material, impostors);
+    batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]));
+    assert.deepEqual(batch.counts, { 4: 1, 3: 1, 2: 1, culled: 2 });
+    assert.deepEqual(lod4Records(batch), [0]);
+    // Without a view only the one behind its wall is left out.
+    const all = new TerminalBatch(setOf([[0, 20, 0], [0, -20, 0], [60, 15, 0]]), library, material, impostors);
+    all.updateLod([0, 0, 0], distances);
+    assert.deepEqual(all.counts, { 4: 2, 3: 0, 2: 0, culled: 1 });
+    assert.deepEqual(lod4Records(all), [0, 2]);
+});
+
+test('the lists are sorted again once the view turns by half the margin, and not before', () => {
+    const batch = new TerminalBatch(setOf([[0, 20, 0], [60, 15, 0]]), library, material, impostors);
+    batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]));
+    const counts = batch.counts;
+    batch.updateLod([0, 0, 0], distances, null, viewAlong(turned(4)));
+    assert.equal(batch.counts, counts, 'a 4 degree turn keeps the lists');
+    // Turned 70 degrees to the right, towards +x: the terminal at x = 60 is in view, the one
+    // straight ahead before is not.
+    batch.updateLod([0, 0, 0], distances, null, viewAlong(turned(70)));
+    assert.deepEqual(batch.counts, { 4: 1, 3: 0, 2: 0, culled: 1 });
+    assert.deepEqual(lod4Records(batch), [1]);
+    // A changed field of view sorts again too, even unturned.
+    const wider = { ...viewAlong(turned(70)), key: 'wider' };
+    const before = batch.counts;
+    batch.updateLod([0, 0, 0], distances, null, wider);
+    assert.notEqual(batch.counts, before);
+});
