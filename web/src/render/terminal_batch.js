@@ -11,7 +11,7 @@
 import * as THREE from 'three';
 
 import { halfToFloat, quaternionAxes, snorm16ToFloat } from '../payload/record.js';
-import { classifyTerminal, movedEnough, turnedEnough } from '../stream/lod_policy.js';
+import { classifyTerminal, movedEnough, moveTolerance, turnedEnough } from '../stream/lod_policy.js';
 
 const FLAT_DEPTH = 1e-3;
 
@@ -105,8 +105,8 @@ export class TerminalBatch {
         this.lastCut = cutVersion;
         this.lastViewKey = viewKey;
         this.lastForward = view ? view.forward.slice() : null;
-        // How far the camera may move before the lists are sorted again (movedEnough).
-        const slack = Math.max(0.5, 0.02 * distances.lod3);
+        // How far the camera may move before the lists are sorted again.
+        const slack = moveTolerance(distances.lod3);
         const counts = { 4: 0, 3: 0, 2: 0, culled: 0 };
         const corner = [0, 0, 0], axes = new Float64Array(9);
         for (const run of this.runs) {

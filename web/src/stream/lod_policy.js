@@ -60,7 +60,12 @@ export function terminalLodDistances(profile, camera) {
 // by 2 % of it, and at least half a metre, so a hovering camera re-decides nothing.
 export function movedEnough(last, camera, distance) {
     if (!last) return true;
-    return Math.hypot(camera[0] - last[0], camera[1] - last[1], camera[2] - last[2]) >= Math.max(0.5, 0.02 * distance);
+    return Math.hypot(camera[0] - last[0], camera[1] - last[1], camera[2] - last[2]) >= moveTolerance(distance);
+}
+
+// How far the camera may move before movedEnough re-makes a decision made at `distance`.
+export function moveTolerance(distance) {
+    return Math.max(0.5, 0.02 * distance);
 }
 
 // The view a batch's terminal lists are sorted for, or null for no frustum test: `sides`, the
@@ -81,9 +86,9 @@ export function turnedEnough(last, forward) {
 // view's side planes turned outwards by TURN_MARGIN. Turning a plane through the camera by an
 // angle a moves a point's signed distance to it by at most |point| sin a.
 export function outsideView(view, cx, cy, cz, radius) {
-    const slack = radius + Math.hypot(cx, cy, cz) * Math.sin(TURN_MARGIN);
+    const reach = radius + Math.hypot(cx, cy, cz) * Math.sin(TURN_MARGIN);
     for (const { normal, constant } of view.sides)
-        if (normal[0] * cx + normal[1] * cy + normal[2] * cz + constant < -slack) return true;
+        if (normal[0] * cx + normal[1] * cy + normal[2] * cz + constant < -reach) return true;
     return false;
 }
 
