@@ -1,6 +1,6 @@
 // A page for impostor.e2e.mjs: the viewer's impostor material (render/impostors.js) drawing one
 // terminal from a synthetic 4 x 4 atlas whose every view is an opaque tile of its own colour
-// (red = 16 x view index), seen from straight in front. The service this build talks to bakes
+// (red = 16 x view index), seen from straight in front; LOD2 covers its mesh bounds' rectangle. The service this build talks to bakes
 // no impostors, so this is how the LOD2 and LOD3 shaders get compiled and checked at all.
 import * as THREE from 'three';
 
@@ -33,7 +33,7 @@ const atlas = {
     albedo: texture(albedoTexels, THREE.SRGBColorSpace),
     normal: texture(normalTexels, THREE.NoColorSpace),
     nominal: [1, 2, 0.2],
-    impostor: { centre: [0.5, 1, 0.1], radius: 1.2 },
+    impostor: { centre: [0.5, 1, 0.1], radius: 1.2, bounds_min: [0, 0, -0.1], bounds_max: [1, 2, 0.3] },
     materials: {},
 };
 const camera = new THREE.PerspectiveCamera(60, 1, 0.1, 100);
@@ -59,4 +59,8 @@ for (const lod of [2, 3]) {
     const centre = 4 * (64 * 128 + 64);
     results[lod] = { covered, centre: Array.from(pixels.subarray(centre, centre + 3)) };
 }
+// The pixels of the mesh bounds' rectangle on the wall plane (world y = 0), which LOD2 covers.
+const corner = (x, z) => new THREE.Vector3(x, 0, z).project(camera).multiplyScalar(64);
+const [low, high] = [corner(0, 0), corner(1, 2)];
+results.wallRectangle = (high.x - low.x) * (high.y - low.y);
 window.impostorResult = { results, errors };

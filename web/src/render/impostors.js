@@ -2,7 +2,10 @@
 // the atlases of /api/v1/impostors/...: albedo PNG, sRGB with coverage in alpha, and the
 // shape-space normal with depth PNG). An impostor is a quad over the shape's bounding sphere
 // (centre, radius, shape space at the nominal size) carried by the terminal's matrix (one
-// merged mesh of quads per shape and LOD, impostor_quads.js): LOD2 faces the central view and shows it; LOD3 faces the camera and blends the four
+// merged mesh of quads per shape and LOD, impostor_quads.js). LOD2 is the central view on the
+// rectangle of the mesh's bounds on the wall plane (z = 0), as the native renderer draws it: the
+// sphere's square would shade twice the fragments, and a software rasteriser pays for every
+// one of them. LOD3 faces the camera and blends the four
 // grid views around the camera's direction in shape space by their bilinear weights, each
 // sampled where the quad's point lies in that view's frame (the reconstruction of
 // impostor_views.glsl without its depth iterations). Coverage under one half is discarded
@@ -15,6 +18,7 @@ import { IMPOSTOR_ATLAS_GLSL, IMPOSTOR_VIEWS_GLSL, VIEW_BLEND_GLSL } from './imp
 const VERTEX = /* glsl */ `
 uniform vec3 nominal;
 uniform vec4 sphere;       // centre xyz, radius (shape space)
+uniform vec2 wallMin, wallMax; // LOD2's rectangle on the wall plane: the mesh's bounds (shape space)
 uniform vec4 atlasLayout;       // grid, view resolution, padding, central view
 uniform float lod;         // 2 or 3
 uniform vec3 sunDirection; // world
@@ -48,20 +52,22 @@ void main() {
     vec3 centre = (shapeToWorld * vec4(sphere.xyz, 1.0)).xyz;
     vec3 toCamera = normalize(worldToShape * (cameraPosition - centre));
     float grid = atlasLayout.x;
-    vec3 forward;
+    vec3 q; // the quad's point in radii, relative to the centre
     if (lod < 2.5) {
         vViews = vec4(atlasLayout.w, atlasLayout.w, atlasLayout.w, atlasLayout.w);
         vWeights = vec4(1.0, 0.0, 0.0, 0.0);
-        forward = impostorViewDirection(atlasLayout.w, grid);
+        // The view projects orthographically, so a point of the wall plane samples the texel
+        // the view shows there.
+        q = (vec3(mix(wallMin, wallMax, 0.5 * position.xy + 0.5), 0.0) - sphere.xyz) / sphere.w;
     } else {
         gridBlend(impostorGridPosition(toCamera, grid), grid, vViews, vWeights);
-        forward = toCamera;
+        vec3 forward = toCamera;
         forward.z = max(forward.z, 0.0);
         forward = normalize(forward + vec3(0.0, 0.0, 1e-6));
+        vec3 right, up;
+        impostorBasis(forward, right, up);
+        q = position.x * right + position.y * up;
     }
-    vec3 right, up;
-    impostorBasis(forward, right, up);
-    vec3 q = position.x * right + position.y * up; // in radii, relative to the centre
     vUv0 = viewUv(vViews.x, q);
     vUv1 = viewUv(vViews.y, q);
     vUv2 = viewUv(vViews.z, q);
@@ -110,6 +116,14 @@ export function loadTexture(loader, url, colour) {
     });
 }
 
+// LOD2's rectangle (uniforms wallMin, wallMax): the x, y extent of the mesh's bounds, or the
+// sphere's square where a service gives no bounds.
+export function wallRectangle(impostor) {
+    const [cx, cy] = impostor.centre, r = impostor.radius;
+    const min = impostor.bounds_min ?? [cx - r, cy - r], max = impostor.bounds_max ?? [cx + r, cy + r];
+    return { wallMin: { value: new THREE.Vector2(min[0], min[1]) }, wallMax: { value: new THREE.Vector2(max[0], max[1]) } };
+}
+
 export class ImpostorSet {
     constructor(scene, lighting) {
         this.layout = scene.impostor_layout ?? null;
@@ -156,6 +170,7 @@ export class ImpostorSet {
             uniforms: {
                 nominal: { value: new THREE.Vector3(...atlas.nominal) },
                 sphere: { value: new THREE.Vector4(...imp.centre, imp.radius) },
+                ...wallRectangle(imp),
                 atlasLayout: { value: new THREE.Vector4(grid, view_resolution, padding, central_view) },
                 lod: { value: lod },
                 albedoAtlas: { value: atlas.albedo },
