@@ -73,6 +73,9 @@ void registerBenchErrorCommand(CLI::App& bench, BenchErrorOptions& o, CLI::App*&
     cmd->add_flag("--json", o.json, "Print one JSON entry per setting");
     cmd->add_flag("--keep-hidden", o.keepHidden,
                   "Every setting, the reference too, draws what the occluders hide instead of culling it");
+    cmd->add_option("--repeats", o.repeats,
+                    "Timed passes over the path per setting; each frame's time is the median of its passes "
+                    "(1 to 100; the images and counts are the first pass's)");
     cmd->add_option(
         "--reference-supersample", o.referenceSupersample,
         "Measure errors against all-LOD4 rendered at N times the size and filtered down (1 to 4)");
@@ -89,6 +92,10 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
     }
     if (o.frames == 0 || o.frames > 10000) {
         std::cerr << "hexlod bench error: --frames: " << o.frames << " is outside [1, 10000]\n";
+        return 2;
+    }
+    if (o.repeats == 0 || o.repeats > 100) {
+        std::cerr << "hexlod bench error: --repeats: " << o.repeats << " is outside [1, 100]\n";
         return 2;
     }
     for (double sse : o.sse) {
@@ -200,6 +207,16 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
                 result.sample = std::move(image);
             }
         }
+        // The passes after the first only time the frames again.
+        std::vector<std::vector<double>> timings(poses.size());
+        for (size_t f = 0; f < poses.size(); ++f) timings[f].push_back(result.frames[f].frameMs);
+        for (uint32_t pass = 1; pass < o.repeats; ++pass)
+            for (size_t f = 0; f < poses.size(); ++f)
+                timings[f].push_back(renderer
+                                         .render(poses[f], double((pass + 1) * poses.size() + f),
+                                                 path.nearPlane, path.farPlane)
+                                         .frameMs);
+        for (size_t f = 0; f < poses.size(); ++f) result.frames[f].frameMs = median(timings[f]);
         results.push_back(std::move(result));
     }
 

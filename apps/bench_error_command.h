@@ -24,6 +24,9 @@ struct BenchErrorOptions {
     // and height, box-filtered down (the timed reference stays at the target size).
     uint32_t referenceSupersample = 1;
     bool keepHidden = false; // every setting draws what the occluders hide (CityRendererOptions::dropHidden)
+    // Timed passes over the path per setting: a frame's time is the median of its passes, so
+    // that a burst of other work on the machine moves no ratio.
+    uint32_t repeats = 3;
     RenderOptions render;
 };
 
