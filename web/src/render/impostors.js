@@ -1,7 +1,7 @@
 // LOD3 and LOD2 of terminals whose shape has a baked impostor (scene.capabilities.impostors;
 // the atlases of /api/v1/impostors/...: albedo PNG, sRGB with coverage in alpha, and the
-// shape-space normal with depth PNG). An impostor is a quad over the shape's bounding sphere
-// (centre, radius, shape space at the nominal size) carried by the terminal's matrix (one
+// shape-space normal with depth PNG). An impostor is a quad in the frame of the shape's bounding
+// sphere (centre, radius, shape space at the nominal size) carried by the terminal's matrix (one
 // merged mesh of quads per shape and LOD, impostor_quads.js). LOD2 is the central view on the
 // rectangle of the mesh's bounds on the wall plane (z = 0), as the native renderer draws it: the
 // sphere's square would shade twice the fragments, and a software rasteriser pays for every
@@ -118,7 +118,7 @@ export function loadTexture(loader, url, colour) {
 
 // LOD2's rectangle (uniforms wallMin, wallMax): the x, y extent of the mesh's bounds, or the
 // sphere's square where a service gives no bounds.
-export function wallRectangle(impostor) {
+function wallRectangle(impostor) {
     const [cx, cy] = impostor.centre, r = impostor.radius;
     const min = impostor.bounds_min ?? [cx - r, cy - r], max = impostor.bounds_max ?? [cx + r, cy + r];
     return { wallMin: { value: new THREE.Vector2(min[0], min[1]) }, wallMax: { value: new THREE.Vector2(max[0], max[1]) } };
