@@ -173,6 +173,7 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
 
     std::vector<render::Image> reference;
     std::vector<SettingResult> results;
+    bool coarseReported = false;
     for (const Setting& setting : settings) {
         lod::CityRenderer renderer(*session.catalog, *session.cache, *session.meshes, &session.impostors,
                                    rendererOptions(setting.mode, setting.sse, 1));
@@ -184,6 +185,11 @@ int runBenchErrorCommand(const BenchErrorOptions& o) {
             std::fprintf(stderr, "hexlod bench error: %s\n", renderer.summary().c_str());
             if (std::string note = renderer.arenaNote(); !note.empty())
                 std::fprintf(stderr, "hexlod bench error: %s\n", note.c_str());
+        }
+        // The reference draws full meshes: the first LOD system setting reports the coarse ones.
+        if (!renderer.coarseNote().empty() && !coarseReported) {
+            std::fprintf(stderr, "hexlod bench error: %s\n", renderer.coarseNote().c_str());
+            coarseReported = true;
         }
         if (!o.json) std::fprintf(stderr, "hexlod bench error: %s\n", setting.name.c_str());
         SettingResult result;

@@ -86,6 +86,7 @@ int runWalkCommand(const WalkOptions& o) {
         return 1;
     }
     session.notes.push_back(renderer.summary());
+    if (!renderer.coarseNote().empty()) session.notes.push_back(renderer.coarseNote());
     if (std::string note = renderer.arenaNote(); !note.empty()) session.notes.push_back(note);
     for (const std::string& note : session.notes) std::fprintf(stderr, "hexlod walk: %s\n", note.c_str());
     if (!o.outDir.empty()) std::filesystem::create_directories(o.outDir);

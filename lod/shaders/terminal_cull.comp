@@ -1,8 +1,8 @@
 #version 450 core
 // One pass over every terminal of the resident batches in view (thesis §7.5.3, after niagara's
-// drawcull.comp): frustum, backface and occlusion culling and the LOD4/LOD3/LOD2 choice,
-// compacted into per-shape draw lists through atomic counters. One workgroup reads one arena
-// page of a batch.
+// drawcull.comp): frustum, backface and occlusion culling, the LOD4/LOD3/LOD2 choice and a
+// LOD4 terminal's mesh, compacted into per-shape draw lists through atomic counters. One
+// workgroup reads one arena page of a batch.
 #include "gpu_types.h"
 #include "cull_shared.h"
 
@@ -17,6 +17,7 @@ layout(std430, binding = 4) buffer CounterBuffer { uvec4 counters[]; };
 layout(std430, binding = 5) writeonly buffer ListBuffer { GpuTerminal lists[]; };
 layout(std430, binding = 10) readonly buffer TreeBuffer { vec4 trees[]; }; // by tree id: position, species
 layout(std430, binding = 11) buffer OccludedBuffer { uint occludedTerminals; };
+layout(std430, binding = 12) readonly buffer CoarseBuffer { vec4 coarse[]; }; // per shape, see meshShape
 
 uniform uint workgroupCount;
 uniform sampler2D occlusionTiles; // the farthest depth of each tile, when frame.occlusion.x > 0
@@ -49,6 +50,11 @@ void main() {
     if (hiddenByTiles(sphere)) {
         atomicAdd(occludedTerminals, 1u);
         return;
+    }
+    // Small on screen, a LOD4 terminal may draw its shape's coarser mesh, a shape of its own.
+    if (lod == HEXLOD_LOD4) {
+        shape = meshShape(t, shape, coarse[shape], sphere, frame);
+        info = shapes[shape];
     }
     // Draw lists carry the camera-relative corner, the global shape id and, in place of the
     // building id, the transition factor (-1 marks LOD2, which has none).

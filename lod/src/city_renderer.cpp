@@ -1,6 +1,7 @@
 // The frame: scheduling, upload, the cull pass and the draws.
 #include "hexlod/lod/city_renderer.h"
 #include "city_renderer_programs.h"
+#include "hexlod/lod/coarse_meshes.h"
 #include "hexlod/lod/lod1_codegen.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/gpu_types.h"
@@ -164,7 +165,11 @@ bool CityRenderer::init(std::string& error) {
         error);
     if (!programs_->volume.valid()) return false;
 
-    shapes_.upload(meshes_);
+    // The reference draws every terminal's full mesh; only the LOD system may draw a coarser one.
+    const std::vector<CoarseMesh> coarse =
+        options_.mode == RenderMode::Lod ? treeCoarseMeshes(catalog_, meshes_) : std::vector<CoarseMesh>{};
+    shapes_.upload(meshes_, coarse);
+    coarseNote_ = describeCoarseMeshes(coarse, shapes_);
     ground_.upload(catalog_.scene().roads, catalog_.cellOrigin(catalog_.index().cells().empty()
                                                                    ? cells::HexCoord{}
                                                                    : catalog_.index().cells().front().cell));
@@ -271,6 +276,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     inputs.shapeCount = shapes_.shapeCount();
     inputs.shapeImpostor = shapes_.impostorFlags();
     inputs.shapeTree = shapeTree_;
+    inputs.shapeCoarse = shapes_.coarseTable();
     inputs.trees = &trees_.trees();
     inputs.treeBuffer = trees_.treeBuffer();
     std::vector<std::pair<uint32_t, bool>> billboards; // tree batch, every tree a billboard
@@ -409,6 +415,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                                ? lodDistance(treeError_, options_.lod, pose.fovY, options_.height)
                                : -1.0;
     setTreeCut(inputs.frame, treeCut, trees_.origin(), pose.position);
+    if (options_.mode == RenderMode::Lod)
+        setCoarseMeshes(inputs.frame, options_.lod, pose.fovY, options_.height);
     std::vector<float> occlusionTiles;
     if (options_.dropHidden && (!inputs.batches.empty() || !billboards.empty())) {
         depthTiles_.build(target_.depthTexture());

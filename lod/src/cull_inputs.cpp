@@ -32,6 +32,13 @@ shared::CullFrame makeCullFrame(const cells::Frustum& frustum, const scene::LodP
     return frame;
 }
 
+void setCoarseMeshes(shared::CullFrame& frame, const scene::LodProfile& profile, double fovY,
+                     uint32_t viewportHeight) {
+    // lodDistance of a unit error: the distance per metre of deviation.
+    const double perMetre = lodDistance(1.0, profile, fovY, viewportHeight);
+    frame.coarseMeshes = glm::vec4(float(perMetre * perMetre), 0.0f, 0.0f, 0.0f);
+}
+
 void setTreeCut(shared::CullFrame& frame, double billboardDistance, const glm::dvec3& treeOrigin,
                 const glm::dvec3& camera) {
     const float cut = billboardDistance < 0.0 ? -1.0f : float(billboardDistance * billboardDistance);
@@ -94,6 +101,10 @@ CullPages selectCullPages(const CullInputs& inputs) {
             }
         }
     }
+    // A coarse shape has no records: it holds the entries of the shapes it serves.
+    for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s)
+        if (inputs.shapeCoarse[s].w >= 0.0f)
+            layout.capacity.at(uint32_t(inputs.shapeCoarse[s].w)) += layout.capacity[s];
     for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
         layout.base[s] = uint32_t(layout.total);
         layout.total += layout.capacity[s];

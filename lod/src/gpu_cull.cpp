@@ -14,7 +14,7 @@ namespace {
 constexpr uint32_t kWorkgroupSize = 64; // cull_finalize.comp's local size
 
 // The GLSL binding of each buffer (terminal_cull.comp, cull_finalize.comp).
-constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7, 11};
+constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7, 11, 12};
 // The occlusion tiles' texture unit: every pass after the cull binds its own textures.
 constexpr uint32_t kOcclusionUnit = 0;
 
@@ -93,6 +93,9 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     upload(kWorkgroups, workgroups.data(), workgroups.size() * sizeof(glm::uvec4));
     upload(kShapes, shapes.data(), shapes.size() * sizeof(glm::uvec4));
     upload(kMeshes, meshInfo.data(), meshInfo.size() * sizeof(glm::uvec4));
+    std::vector<glm::vec4> coarse = inputs.shapeCoarse;
+    coarse.resize(shapeCount_, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+    upload(kCoarse, coarse.data(), coarse.size() * sizeof(glm::vec4));
     reserve(kCounters, uint64_t(shapeCount_) * sizeof(glm::uvec4));
     gl::glClearNamedBufferSubData(buffers_[kCounters].id, GL_R32UI, 0,
                                   GLsizeiptr(shapeCount_ * sizeof(glm::uvec4)), GL_RED_INTEGER,
@@ -106,7 +109,7 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[kFrame].id);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, arena);
     for (BufferIndex index :
-         {kBatches, kWorkgroups, kShapes, kCounters, kLists, kMeshes, kCommands, kOccluded}) {
+         {kBatches, kWorkgroups, kShapes, kCounters, kLists, kMeshes, kCommands, kOccluded, kCoarse}) {
         gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindings[index], buffers_[index].id);
     }
     if (inputs.treeBuffer) gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, inputs.treeBuffer);

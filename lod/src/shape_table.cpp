@@ -11,25 +11,29 @@ ShapeTable::~ShapeTable() {
         if (buffer) gl::glDeleteBuffers(1, &buffer);
 }
 
-void ShapeTable::upload(const render::TerminalMeshLibrary& library) {
+void ShapeTable::upload(const render::TerminalMeshLibrary& library, std::span<const CoarseMesh> coarse) {
     std::vector<render::MeshVertex> vertices;
     std::vector<uint32_t> indices;
     std::map<const render::TerminalMesh*, MeshDrawInfo> placed;
+    const auto add = [&](const render::TerminalMesh& mesh) {
+        auto [it, inserted] = placed.try_emplace(&mesh);
+        if (inserted) {
+            it->second = {uint32_t(mesh.indices.size()), uint32_t(indices.size()), int32_t(vertices.size())};
+            vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+            indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+        }
+        draws_.push_back(it->second);
+        shapes_.push_back({glm::vec4(mesh.nominalSize, -1.0f), glm::vec4(mesh.boundsMin, 0.0f),
+                           glm::vec4(mesh.boundsMax, 0.0f)});
+    };
     for (uint32_t g = 0; g < library.grammarCount(); ++g) {
         bases_.push_back(uint32_t(draws_.size()));
-        for (uint16_t s = 0; s < library.shapeCount(g); ++s) {
-            const render::TerminalMesh& mesh = library.mesh(g, s);
-            auto [it, inserted] = placed.try_emplace(&mesh);
-            if (inserted) {
-                it->second = {uint32_t(mesh.indices.size()), uint32_t(indices.size()),
-                              int32_t(vertices.size())};
-                vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
-                indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
-            }
-            draws_.push_back(it->second);
-            shapes_.push_back({glm::vec4(mesh.nominalSize, -1.0f), glm::vec4(mesh.boundsMin, 0.0f),
-                               glm::vec4(mesh.boundsMax, 0.0f)});
-        }
+        for (uint16_t s = 0; s < library.shapeCount(g); ++s) add(library.mesh(g, s));
+    }
+    coarse_.assign(draws_.size() + coarse.size(), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+    for (const CoarseMesh& variant : coarse) {
+        coarse_.at(variant.shape) = glm::vec4(variant.deviation, float(draws_.size()));
+        add(*variant.mesh);
     }
     gl::glCreateBuffers(1, &vertices_);
     gl::glNamedBufferStorage(vertices_,

@@ -70,6 +70,16 @@ std::optional<TerminalMesh> buildProceduralMesh(const grammar::ShapeInfo& shape)
     return best->finish(shape.name, "procedural");
 }
 
+std::optional<TerminalMesh> buildCoarserProceduralMesh(const grammar::ShapeInfo& shape,
+                                                       const TerminalMesh& fine) {
+    if (fine.source != "procedural") return std::nullopt;
+    grammar::ShapeInfo coarser = shape;
+    coarser.triangles = uint32_t(fine.triangleCount() / 2);
+    std::optional<TerminalMesh> mesh = buildProceduralMesh(coarser);
+    if (!mesh || 4 * mesh->triangleCount() > 3 * fine.triangleCount()) return std::nullopt;
+    return mesh;
+}
+
 TerminalMesh buildFallbackMesh(const grammar::ShapeInfo& shape) {
     const glm::vec3 nominal = nominalShapeSize(shape.width, shape.height, shape.depthRatio);
     MeshBuilder b(nominal);

@@ -1,7 +1,7 @@
 // The whole frame on llvmpipe: every mode renders a small city, the LOD system costs less than
 // everything at LOD4 and stays close to it, multisampling antialiases, tree billboards cover
 // what their trees cover with and without it, trees a pixel across are points that cover as
-// much, the profile's tree error places the cut, hidden
+// much, the profile's tree error places the cut, far tree parts draw coarser meshes, hidden
 // billboards and LOD3 impostors are dropped without changing a pixel, a city 1e7 m out renders
 // as at the origin, odd cameras render without error, and golden images hold each mode's look.
 #include "../render/gl_fixture.h"
@@ -209,6 +209,26 @@ TEST_F(CityRendererTest, TheProfilesTreeErrorPlacesTheCutBetweenTreesAndBillboar
     EXPECT_EQ(treeTerminals[1], 0u);
     EXPECT_GT(treeTerminals[2], 0u);
     EXPECT_LT(treeTerminals[2], treeTerminals[0]);
+}
+
+TEST_F(CityRendererTest, FarTreePartsDrawCoarserMeshesThatLookTheSameForFewerTriangles) {
+    // Trees only and no billboards (tree error 0), so the LOD system and the reference draw
+    // the same tree terminals at LOD4; the LOD system draws the far ones' coarser meshes.
+    testing::TestCity city = testing::makeCity(0, 120);
+    const SceneImpostors impostors = bake(city);
+    const scene::CameraPose pose = lookAt({-60, -70, 12}, {0, 0, 5});
+    scene::LodProfile lod;
+    lod.treeGeometricError = 0.0;
+    const Rendered full = render(city, impostors, RenderMode::AllLod4, pose, 1, 4);
+    const Rendered coarse = render(city, impostors, RenderMode::Lod, pose, 1, 4, true, lod);
+    EXPECT_EQ(coarse.stats.terminalsPerLod[4], full.stats.terminalsPerLod[4]);
+    EXPECT_EQ(coarse.stats.treeBillboards, 0u);
+    const double psnr = render::compareImages(coarse.image, full.image).psnr;
+    std::printf("coarse tree parts: %llu of %llu triangles, %.2f dB against full meshes\n",
+                static_cast<unsigned long long>(coarse.stats.triangles),
+                static_cast<unsigned long long>(full.stats.triangles), psnr);
+    EXPECT_LT(coarse.stats.triangles, full.stats.triangles * 3 / 4);
+    EXPECT_GT(psnr, 35.0);
 }
 
 TEST_F(CityRendererTest, HiddenImpostorsAndBillboardsAreDroppedWithoutChangingAPixel) {

@@ -81,13 +81,20 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
     std::vector<TerminalSet> sets;
     for (int b = 0; b < 12; ++b)
         sets.push_back(randomSet(random, 1000 + 937 * b, shapesPerGrammar, 150.0f, b % 3 != 0));
-    uint64_t skipped = 0, occludedPages = 0;
+    uint64_t skipped = 0, occludedPages = 0, fine = 0, coarse = 0;
     for (int trial = 0; trial < 6; ++trial) {
         arena.beginFrame(trial);
         CullInputs inputs;
-        inputs.shapeCount = 2 * shapesPerGrammar;
+        // Two coarse shapes after the grammars' (CoarseMesh): one serves shape 3, which has no
+        // impostor, the other shape 8, whose LOD4 terminals are the near ones.
+        const uint32_t coarse3 = 2 * shapesPerGrammar, coarse8 = coarse3 + 1;
+        inputs.shapeCount = 2 * shapesPerGrammar + 2;
         inputs.shapeImpostor.assign(inputs.shapeCount, 1);
         inputs.shapeImpostor[3] = 0; // a shape without impostor stays LOD4
+        inputs.shapeImpostor[coarse3] = inputs.shapeImpostor[coarse8] = 0;
+        inputs.shapeCoarse.assign(inputs.shapeCount, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+        inputs.shapeCoarse[3] = glm::vec4(0.02f, 0.01f, 0.3f, float(coarse3));
+        inputs.shapeCoarse[8] = glm::vec4(0.002f, 0.004f, 0.01f, float(coarse8));
         // A city far from the world origin: the camera and cell origins are large doubles.
         const glm::dvec3 cityOrigin(1e7 * (trial % 2), -3e6 * (trial % 3), 50.0);
         std::uniform_real_distribution<double> offset(-200.0, 200.0), angle(0.0, 6.283);
@@ -107,6 +114,8 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         scene::LodProfile profile;
         profile.maxScreenSpaceError = 1.0 + trial;
         inputs.frame = makeCullFrame(frustum, profile, 0.3 + 0.4 * trial, 720, 0.2, true);
+        // The reference's frames (trial 0) draw every mesh in full.
+        if (trial > 0) setCoarseMeshes(inputs.frame, profile, 0.3 + 0.4 * trial, 720);
         // Odd trials test occlusion too, against a wall over the screen's left half at 40 to
         // 160 m (each tile's farthest depth) and open sky on the right.
         const uint32_t columns = 80, rows = 45;
@@ -161,6 +170,15 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
                 EXPECT_EQ(counters[s].y, 0u);
             }
         }
+        // A coarse shape's lists hold what its shape's could; only LOD4 entries move there.
+        EXPECT_EQ(layout.capacity[coarse3], layout.capacity[3]);
+        EXPECT_EQ(layout.capacity[coarse8], layout.capacity[8]);
+        EXPECT_EQ(counters[coarse3].y + counters[coarse8].y, 0u);
+        if (trial == 0) {
+            EXPECT_EQ(counters[coarse3].x + counters[coarse8].x, 0u);
+        }
+        fine += counters[3].x;
+        coarse += counters[coarse3].x + counters[coarse8].x;
         // Some of everything: the trial would prove little if all were culled or all LOD4.
         EXPECT_GT(visible, 0u);
         EXPECT_GT(reference.culled, 0u);
@@ -183,6 +201,9 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
     // still match the reference, which skips none.
     EXPECT_GT(skipped, 0u);
     EXPECT_GT(occludedPages, 0u);
+    // Near terminals kept their shape's mesh and far ones took the coarse one.
+    EXPECT_GT(fine, 0u);
+    EXPECT_GT(coarse, 0u);
 }
 
 // Hand-placed terminals: a 2 m x 2 m facade tile facing -y at the origin of its cell.
@@ -232,6 +253,38 @@ TEST(CullRulesTest, FrustumBackfaceAndDistanceDecideAsDocumented) {
     EXPECT_EQ(classify(tile, {1, 0.3, 1}, glm::dvec3(0, -1, -0.2), 2.0), HEXLOD_LOD4);
     // A larger error budget moves every switch closer.
     EXPECT_EQ(classify(tile, {1, -200, 1}, north, 16.0), HEXLOD_LOD2);
+}
+
+TEST(CullRulesTest, ACoarseMeshServesFromWhereItsDeviationProjectsUnderTheBound) {
+    const Placed tile = facadeTile(glm::vec3(0.0f), 0.25f); // 2 m x 2 m, 0.5 m deep
+    const glm::vec3 deviation(0.01f, 0.01f, 0.1f);          // 2 cm, 2 cm and 5 cm on this tile
+    scene::LodProfile profile;
+    profile.maxScreenSpaceError = 2.0;
+    // Which shape the tile draws with from `distance` in front of its centre: 0, its own mesh; 1,
+    // the coarse one; -1, none.
+    const auto drawnShape = [&](double distance, bool coarseMeshes) {
+        CullInputs inputs;
+        inputs.shapeCount = 2;
+        inputs.shapeImpostor = {0, 0}; // no impostor: LOD4 at any distance
+        inputs.shapeCoarse = {glm::vec4(deviation, 1.0f), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f)};
+        inputs.camera = glm::dvec3(1.0, -distance, 1.0);
+        inputs.batches.push_back({&tile.set, nullptr, glm::dvec3(0.0), 0});
+        cells::Frustum frustum(inputs.camera, glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), 1.0, 1.5, 0.1,
+                               5000.0);
+        inputs.frame = makeCullFrame(frustum, profile, 1.0, 720, 0.2, true);
+        if (coarseMeshes) setCoarseMeshes(inputs.frame, profile, 1.0, 720);
+        const CullResult result = cullOnCpu(inputs);
+        EXPECT_EQ(result.terminalsPerLod[4], 1u);
+        return !result.lod4[1].empty() ? 1 : !result.lod4[0].empty() ? 0 : -1;
+    };
+    const double reach =
+        glm::length(deviation * glm::vec3(2.0f, 2.0f, 0.5f)) * lodDistance(1.0, profile, 1.0, 720);
+    EXPECT_NEAR(reach, 18.9, 0.1);
+    EXPECT_EQ(drawnShape(0.95 * reach, true), 0);
+    EXPECT_EQ(drawnShape(1.05 * reach, true), 1);
+    EXPECT_EQ(drawnShape(100.0 * reach, true), 1);
+    // Without coarse meshes in the frame (the all-LOD4 reference) the tile keeps its mesh.
+    EXPECT_EQ(drawnShape(1.05 * reach, false), 0);
 }
 
 TEST_F(CullTest, ArenaEvictsTheLeastRecentlyDrawnWhenFull) {

@@ -119,6 +119,8 @@ public:
     const CityRendererOptions& options() const { return options_; }
     // What the renderer compiled: "LOD1 shaders: 2 grammars".
     std::string summary() const;
+    // The coarse meshes the LOD system may draw (describeCoarseMeshes); empty without any.
+    const std::string& coarseNote() const { return coarseNote_; }
     // "terminal arena: 4.19 M records, capped by the GL (...)" when the GL holds fewer
     // terminals on the GPU than the options ask for; empty otherwise.
     std::string arenaNote() const;
@@ -184,6 +186,7 @@ private:
     uint32_t sphereBuffer_ = 0, frameBuffer_ = 0, lod4Vao_ = 0, impostorVao_ = 0;
     uint32_t centralView_ = 0;
     std::vector<uint8_t> shapeTree_; // per global shape: part of a tree
+    std::string coarseNote_;         // describeCoarseMeshes, for summary()
     uint64_t frame_ = 0;
 };
 

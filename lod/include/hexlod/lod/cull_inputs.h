@@ -31,6 +31,9 @@ struct CullInputs {
     uint32_t shapeCount = 0;            // global shapes
     std::vector<uint8_t> shapeImpostor; // per global shape: 1 when it has an impostor
     std::vector<uint8_t> shapeTree;     // per global shape: 1 when it is part of a tree
+    // Per global shape, its coarser mesh (meshShape in cull_shared.h): xyz how far it lies from
+    // the shape's mesh per unit-scope axis, w the coarse shape or -1. Empty: none has one.
+    std::vector<glm::vec4> shapeCoarse;
     // By tree id: the tree's position relative to the trees' origin (xyz) and its species (w);
     // needed when a shape is a tree shape. treeBuffer is the same on the GPU.
     const std::vector<glm::vec4>* trees = nullptr;
@@ -56,6 +59,11 @@ shared::CullFrame makeCullFrame(const cells::Frustum& frustum, const scene::LodP
 void setTreeCut(shared::CullFrame& frame, double billboardDistance, const glm::dvec3& treeOrigin,
                 const glm::dvec3& camera);
 
+// Lets LOD4 terminals draw their shape's coarser mesh where its deviation projects under the
+// profile's error bound (frame.coarseMeshes); the all-LOD4 reference leaves it off.
+void setCoarseMeshes(shared::CullFrame& frame, const scene::LodProfile& profile, double fovY,
+                     uint32_t viewportHeight);
+
 // Turns the occlusion test on in `frame` (see occlusionRect in cull_shared.h): the camera's
 // axes and projection, and a grid of `columns` x `rows` tiles of `tilePixels` pixels over a
 // `width` x `height` viewport.
@@ -68,7 +76,8 @@ double lodDistance(double geometricError, const scene::LodProfile& profile, doub
                    uint32_t viewportHeight);
 
 // Per-shape layout of the draw lists: list capacity per shape is the number of its terminals
-// in the pages the pass culls; bases are their prefix sums.
+// in the pages the pass culls (a coarse shape's, that of the shapes it serves); bases are
+// their prefix sums.
 struct DrawListLayout {
     std::vector<uint32_t> base, capacity; // per global shape
     uint64_t total = 0;

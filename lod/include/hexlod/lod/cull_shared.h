@@ -55,11 +55,12 @@ struct CullFrame {
     vec4 trees;       // x: squared distance from which a tree is its billboard (< 0: never);
                       // yzw: the origin of tree positions minus the camera
     // The occlusion test (occlusionRect): the camera's axes, the projection and the tiles.
-    vec4 viewRight;   // xyz: the camera's right axis; w: the projection's x scale
-    vec4 viewUp;      // xyz: its up axis; w: the projection's y scale
-    vec4 viewForward; // xyz: its forward axis; w: the near plane's distance
-    vec4 depthMap;    // window depth (reversed-Z) of view distance d: x / d - y; zw: viewport pixels
-    vec4 occlusion;   // x, y: tiles across and down (x = 0: no occlusion test); z: tile pixels
+    vec4 viewRight;    // xyz: the camera's right axis; w: the projection's x scale
+    vec4 viewUp;       // xyz: its up axis; w: the projection's y scale
+    vec4 viewForward;  // xyz: its forward axis; w: the near plane's distance
+    vec4 depthMap;     // window depth (reversed-Z) of view distance d: x / d - y; zw: viewport pixels
+    vec4 occlusion;    // x, y: tiles across and down (x = 0: no occlusion test); z: tile pixels
+    vec4 coarseMeshes; // x: (screen pixels per radian / error bound)^2, 0: full meshes only
 };
 
 // Per global shape (std430 uvec4): x, the first slot of its draw lists; y, their capacity
@@ -173,6 +174,19 @@ HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, boo
         transition = (distance - start) / (threshold - start);
     }
     return lod;
+}
+
+// The global shape a LOD4 terminal draws with. A shape may have a coarser mesh, a shape of its
+// own (`coarse`, per shape: xyz, how far the two meshes lie apart along each unit-scope axis;
+// w, the coarse shape, or -1 for none). A terminal draws it once that distance, scaled by its
+// scope, projects under the error bound from the centre of its sphere.
+HEXLOD_FN uint meshShape(GpuTerminal t, uint shape, vec4 coarse, vec4 sphere, CullFrame frame) {
+    if (coarse.w < 0.0f || frame.coarseMeshes.x <= 0.0f) return shape;
+    float width = halfToFloat(t.size & 0xffffu), height = halfToFloat(t.size >> 16);
+    HEXLOD_PRECISE float depth = halfToFloat(t.shapeAndDepth >> 16) * (width < height ? width : height);
+    HEXLOD_PRECISE vec3 error = vec3(coarse.x * width, coarse.y * height, coarse.z * depth);
+    HEXLOD_PRECISE float reachSquared = dot3(error, error) * frame.coarseMeshes.x;
+    return dot3(vec3(sphere), vec3(sphere)) >= reachSquared ? uint(coarse.w) : shape;
 }
 
 // Occlusion (a hierarchical-Z test of one level): before the pass, the frame has drawn its

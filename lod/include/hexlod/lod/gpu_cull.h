@@ -70,6 +70,7 @@ private:
         kMeshes,
         kCommands,
         kOccluded,
+        kCoarse,
         kBufferCount
     };
     struct Buffer {

@@ -7,6 +7,8 @@
 #include "hexlod/render/terminal_mesh_library.h"
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,14 @@ struct GpuShape {
     glm::vec4 boundsMax;
 };
 
+// A coarser mesh that LOD4 terminals of a shape draw where it is small on screen (meshShape in
+// cull_shared.h); the table gives it a global shape of its own, after every grammar's.
+struct CoarseMesh {
+    uint32_t shape = 0; // the global shape it serves
+    std::shared_ptr<const render::TerminalMesh> mesh;
+    glm::vec3 deviation{0.0f}; // meshDeviation between the shape's mesh and this one
+};
+
 class ShapeTable {
 public:
     ShapeTable() = default;
@@ -26,8 +36,8 @@ public:
     ShapeTable(const ShapeTable&) = delete;
     ShapeTable& operator=(const ShapeTable&) = delete;
 
-    // Uploads every mesh of `library` (grammars in the scene's order) once.
-    void upload(const render::TerminalMeshLibrary& library);
+    // Uploads every mesh of `library` (grammars in the scene's order) and of `coarse` once.
+    void upload(const render::TerminalMeshLibrary& library, std::span<const CoarseMesh> coarse = {});
     // Records which impostor layer serves a global shape (-1: none, it always draws at LOD4).
     void setImpostorLayer(uint32_t shape, int layer);
     // Sends the per-shape table to the GPU; call after the layers are set.
@@ -38,6 +48,8 @@ public:
     const std::vector<MeshDrawInfo>& meshes() const { return draws_; }
     const std::vector<GpuShape>& shapes() const { return shapes_; }
     std::vector<uint8_t> impostorFlags() const;
+    // Per global shape, its coarse mesh as the cull pass reads it (CullInputs::shapeCoarse).
+    const std::vector<glm::vec4>& coarseTable() const { return coarse_; }
     uint32_t triangles(uint32_t shape) const { return draws_.at(shape).indexCount / 3; }
 
     uint32_t vertexBuffer() const { return vertices_; }
@@ -49,6 +61,7 @@ private:
     std::vector<uint32_t> bases_;
     std::vector<MeshDrawInfo> draws_;
     std::vector<GpuShape> shapes_;
+    std::vector<glm::vec4> coarse_;
     uint32_t vertices_ = 0, indices_ = 0, table_ = 0;
     uint64_t bytes_ = 0;
 };

@@ -20,6 +20,13 @@ std::vector<std::string> proceduralShapeNames();
 // generator has the shape's name.
 std::optional<TerminalMesh> buildProceduralMesh(const grammar::ShapeInfo& shape);
 
+// A coarser mesh of the same shape for where `fine` (the shape's mesh) is small on screen: the
+// generator's level closest to half of `fine`'s triangles, when it has at most three quarters
+// of them. Empty when `fine` did not come from a generator (a glTF mesh, a fallback box) or no
+// level is coarse enough.
+std::optional<TerminalMesh> buildCoarserProceduralMesh(const grammar::ShapeInfo& shape,
+                                                       const TerminalMesh& fine);
+
 // A box filling the shape's bounds (u, v in [0, 1], t in [0, 1], or a flat quad for a shape of
 // depth 0), magenta, for a shape with neither generator nor glTF mesh; `source` is "fallback".
 TerminalMesh buildFallbackMesh(const grammar::ShapeInfo& shape);
