@@ -2,6 +2,9 @@
 // Turns the cull pass's counters into indirect draw commands, one thread per shape: an indexed
 // instanced draw of its mesh over the LOD4 entries, and a non-instanced draw of
 // six vertices (a screen rectangle) per impostor entry, which pull their entry by gl_VertexID.
+#include "gpu_types.h"
+#include "cull_shared.h"
+
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 3) readonly buffer ShapeBuffer { uvec4 shapes[]; };
@@ -21,7 +24,8 @@ void main() {
     commands[at + 1u] = count.x;
     commands[at + 2u] = mesh.y;
     commands[at + 3u] = mesh.z;
-    commands[at + 4u] = info.x;
+    // A coarse shape's entries fill its lists from the back (cull_shared.h).
+    commands[at + 4u] = info.z == HEXLOD_COARSE_SHAPE ? info.x + info.y - count.x : info.x;
     at = shapeCount * 5u + shape * 4u;
     commands[at + 0u] = 6u * count.y;
     commands[at + 1u] = 1u;

@@ -53,7 +53,7 @@ void main() {
     }
     // Small on screen, a LOD4 terminal may draw its shape's coarser mesh, a shape of its own.
     if (lod == HEXLOD_LOD4) {
-        shape = meshShape(t, shape, coarse[shape], sphere, frame);
+        shape = meshShape(t, shape, info.z != 0u, coarse[shape], sphere, frame);
         info = shapes[shape];
     }
     // Draw lists carry the camera-relative corner, the global shape id and, in place of the
@@ -61,7 +61,9 @@ void main() {
     t.position = corner;
     t.building = floatBitsToUint(lod == HEXLOD_LOD2 ? -1.0 : transition);
     t.shapeAndDepth = (t.shapeAndDepth & 0xffff0000u) | shape;
-    if (lod == HEXLOD_LOD4) {
+    if (info.z == HEXLOD_COARSE_SHAPE) {
+        lists[info.x + info.y - 1u - atomicAdd(counters[shape].x, 1u)] = t;
+    } else if (lod == HEXLOD_LOD4) {
         lists[info.x + atomicAdd(counters[shape].x, 1u)] = t;
     } else {
         lists[info.x + info.y - 1u - atomicAdd(counters[shape].y, 1u)] = t;

@@ -101,13 +101,18 @@ CullPages selectCullPages(const CullInputs& inputs) {
             }
         }
     }
-    // A coarse shape has no records: it holds the entries of the shapes it serves.
-    for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s)
-        if (inputs.shapeCoarse[s].w >= 0.0f)
-            layout.capacity.at(uint32_t(inputs.shapeCoarse[s].w)) += layout.capacity[s];
     for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
         layout.base[s] = uint32_t(layout.total);
         layout.total += layout.capacity[s];
+    }
+    // A coarse shape has no records of its own: it shares the lists of the shape it serves,
+    // whose terminals are each drawn with one of the two meshes (its LOD4 entries fill them
+    // from the back, where impostor entries would go; a shape with a coarse mesh has none).
+    for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s) {
+        if (inputs.shapeCoarse[s].w < 0.0f || inputs.shapeImpostor.at(s)) continue;
+        const uint32_t coarse = uint32_t(inputs.shapeCoarse[s].w);
+        layout.base.at(coarse) = layout.base[s];
+        layout.capacity.at(coarse) = layout.capacity[s];
     }
     return out;
 }

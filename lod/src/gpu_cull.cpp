@@ -77,6 +77,8 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
         batches.push_back(batch);
     }
     std::vector<glm::uvec4> shapes(shapeCount_), meshInfo(shapeCount_);
+    std::vector<glm::vec4> coarse = inputs.shapeCoarse;
+    coarse.resize(shapeCount_, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     for (uint32_t s = 0; s < shapeCount_; ++s) {
         shapes[s] = glm::uvec4(layout_.base[s], layout_.capacity[s], inputs.shapeImpostor[s],
                                inputs.shapeTree.empty() ? 0u : inputs.shapeTree[s]);
@@ -91,10 +93,10 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     upload(kFrame, &inputs.frame, sizeof inputs.frame);
     upload(kBatches, batches.data(), batches.size() * sizeof(shared::CullBatch));
     upload(kWorkgroups, workgroups.data(), workgroups.size() * sizeof(glm::uvec4));
+    for (const glm::vec4& c : coarse)
+        if (c.w >= 0.0f) shapes.at(uint32_t(c.w)).z = HEXLOD_COARSE_SHAPE;
     upload(kShapes, shapes.data(), shapes.size() * sizeof(glm::uvec4));
     upload(kMeshes, meshInfo.data(), meshInfo.size() * sizeof(glm::uvec4));
-    std::vector<glm::vec4> coarse = inputs.shapeCoarse;
-    coarse.resize(shapeCount_, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     upload(kCoarse, coarse.data(), coarse.size() * sizeof(glm::vec4));
     reserve(kCounters, uint64_t(shapeCount_) * sizeof(glm::uvec4));
     gl::glClearNamedBufferSubData(buffers_[kCounters].id, GL_R32UI, 0,

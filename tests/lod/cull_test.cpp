@@ -86,7 +86,8 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         arena.beginFrame(trial);
         CullInputs inputs;
         // Two coarse shapes after the grammars' (CoarseMesh): one serves shape 3, which has no
-        // impostor, the other shape 8, whose LOD4 terminals are the near ones.
+        // impostor; the other serves shape 8, which has one, so it never draws (a shape with an
+        // impostor switches to it instead).
         const uint32_t coarse3 = 2 * shapesPerGrammar, coarse8 = coarse3 + 1;
         inputs.shapeCount = 2 * shapesPerGrammar + 2;
         inputs.shapeImpostor.assign(inputs.shapeCount, 1);
@@ -156,8 +157,10 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
                 std::sort(ids.begin(), ids.end());
                 return ids;
             };
-            EXPECT_EQ(gpuSorted(layout.base[s], counters[s].x), cpuSorted(reference.lod4[s], 0))
-                << "shape " << s;
+            // A coarse shape's entries fill the lists it shares from the back.
+            const uint32_t lod4First =
+                s == coarse3 ? layout.base[s] + layout.capacity[s] - counters[s].x : layout.base[s];
+            EXPECT_EQ(gpuSorted(lod4First, counters[s].x), cpuSorted(reference.lod4[s], 0)) << "shape " << s;
             EXPECT_EQ(gpuSorted(layout.base[s] + layout.capacity[s] - counters[s].y, counters[s].y),
                       cpuSorted(reference.impostor[s], 0))
                 << "shape " << s;
@@ -170,15 +173,19 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
                 EXPECT_EQ(counters[s].y, 0u);
             }
         }
-        // A coarse shape's lists hold what its shape's could; only LOD4 entries move there.
+        // A coarse shape shares the lists of the shape it serves and adds nothing to them;
+        // only LOD4 entries move there.
+        EXPECT_EQ(layout.base[coarse3], layout.base[3]);
         EXPECT_EQ(layout.capacity[coarse3], layout.capacity[3]);
-        EXPECT_EQ(layout.capacity[coarse8], layout.capacity[8]);
-        EXPECT_EQ(counters[coarse3].y + counters[coarse8].y, 0u);
+        EXPECT_EQ(layout.capacity[coarse8], 0u);
+        EXPECT_EQ(layout.total, layout.base[coarse3 - 1] + layout.capacity[coarse3 - 1]);
+        EXPECT_LE(counters[3].x + counters[coarse3].x, layout.capacity[3]);
+        EXPECT_EQ(counters[coarse3].y + counters[coarse8].x + counters[coarse8].y, 0u);
         if (trial == 0) {
-            EXPECT_EQ(counters[coarse3].x + counters[coarse8].x, 0u);
+            EXPECT_EQ(counters[coarse3].x, 0u);
         }
         fine += counters[3].x;
-        coarse += counters[coarse3].x + counters[coarse8].x;
+        coarse += counters[coarse3].x;
         // Some of everything: the trial would prove little if all were culled or all LOD4.
         EXPECT_GT(visible, 0u);
         EXPECT_GT(reference.culled, 0u);

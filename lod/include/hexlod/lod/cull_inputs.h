@@ -32,7 +32,9 @@ struct CullInputs {
     std::vector<uint8_t> shapeImpostor; // per global shape: 1 when it has an impostor
     std::vector<uint8_t> shapeTree;     // per global shape: 1 when it is part of a tree
     // Per global shape, its coarser mesh (meshShape in cull_shared.h): xyz how far it lies from
-    // the shape's mesh per unit-scope axis, w the coarse shape or -1. Empty: none has one.
+    // the shape's mesh per unit-scope axis, w the coarse shape or -1. Empty: none has one. A
+    // shape with an impostor has none (the coarse shape's entries take the impostors' place
+    // in its lists).
     std::vector<glm::vec4> shapeCoarse;
     // By tree id: the tree's position relative to the trees' origin (xyz) and its species (w);
     // needed when a shape is a tree shape. treeBuffer is the same on the GPU.
@@ -76,8 +78,8 @@ double lodDistance(double geometricError, const scene::LodProfile& profile, doub
                    uint32_t viewportHeight);
 
 // Per-shape layout of the draw lists: list capacity per shape is the number of its terminals
-// in the pages the pass culls (a coarse shape's, that of the shapes it serves); bases are
-// their prefix sums.
+// in the pages the pass culls; bases are their prefix sums. A coarse shape shares the lists of
+// the shape it serves (same base and capacity, not counted in the total).
 struct DrawListLayout {
     std::vector<uint32_t> base, capacity; // per global shape
     uint64_t total = 0;
