@@ -49,6 +49,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"draws", f.draws},
         {"terminals_per_lod",
          {{"lod2", f.terminalsPerLod[2]}, {"lod3", f.terminalsPerLod[3]}, {"lod4", f.terminalsPerLod[4]}}},
+        {"lod4_coarse_terminals", f.coarseTerminals},
         {"cells_per_lod",
          {{"lod0", f.cellsPerLod[0]}, {"lod1", f.cellsPerLod[1]}, {"terminal_sets", f.cellsPerLod[4]}}},
         {"visible_cells", f.visibleCells},

@@ -510,6 +510,7 @@ void CityRenderer::drawTerminalMeshes(FrameStats& stats, PassTimer& timer) {
     stats.cullOccludedTerminals += cull_.readOccluded();
     for (uint32_t s = 0; s < shapes; ++s) {
         stats.terminalsPerLod[4] += counters[s].x;
+        if (s >= shapes_.firstCoarseShape()) stats.coarseTerminals += counters[s].x;
         stats.terminalsPerLod[3] += counters[s].z;
         stats.terminalsPerLod[2] += counters[s].w;
         // An impostor is one rectangle: two triangles.

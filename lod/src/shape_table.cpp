@@ -30,6 +30,7 @@ void ShapeTable::upload(const render::TerminalMeshLibrary& library, std::span<co
         bases_.push_back(uint32_t(draws_.size()));
         for (uint16_t s = 0; s < library.shapeCount(g); ++s) add(library.mesh(g, s));
     }
+    firstCoarse_ = uint32_t(draws_.size());
     coarse_.assign(draws_.size() + coarse.size(), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     for (const CoarseMesh& variant : coarse) {
         coarse_.at(variant.shape) = glm::vec4(variant.deviation, float(draws_.size()));

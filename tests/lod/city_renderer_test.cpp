@@ -223,6 +223,10 @@ TEST_F(CityRendererTest, FarTreePartsDrawCoarserMeshesThatLookTheSameForFewerTri
     const Rendered coarse = render(city, impostors, RenderMode::Lod, pose, 1, 4, true, lod);
     EXPECT_EQ(coarse.stats.terminalsPerLod[4], full.stats.terminalsPerLod[4]);
     EXPECT_EQ(coarse.stats.treeBillboards, 0u);
+    EXPECT_EQ(full.stats.coarseTerminals, 0u);
+    EXPECT_GT(coarse.stats.coarseTerminals, 0u);
+    // At 160 x 96 pixels every part here is small enough (CullRulesTest checks the distance).
+    EXPECT_LE(coarse.stats.coarseTerminals, coarse.stats.terminalsPerLod[4]);
     const double psnr = render::compareImages(coarse.image, full.image).psnr;
     std::printf("coarse tree parts: %llu of %llu triangles, %.2f dB against full meshes\n",
                 static_cast<unsigned long long>(coarse.stats.triangles),

@@ -79,6 +79,7 @@ struct FrameStats {
     double diskLoadMs = 0.0, diskStoreMs = 0.0;
     uint64_t triangles = 0, draws = 0;
     std::array<uint64_t, 5> terminalsPerLod{}; // LOD2..LOD4 drawn terminals (0 and 1 unused)
+    uint64_t coarseTerminals = 0;              // of the LOD4 ones, drawn with a coarse mesh
     std::array<uint32_t, 5> cellsPerLod{};     // cells in view: 0 and 1 extruded, 4 with terminal sets
     // Terminals of the batches drawn: culled one by one on the GPU, or skipped with their
     // arena page, whose bounds lie outside the frustum or behind the occlusion tiles.

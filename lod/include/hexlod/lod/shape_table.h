@@ -44,6 +44,8 @@ public:
     void commit();
 
     uint32_t shapeCount() const { return uint32_t(shapes_.size()); }
+    // The grammars' shapes come first; the coarse ones (CoarseMesh) from here on.
+    uint32_t firstCoarseShape() const { return firstCoarse_; }
     uint32_t shapeBase(uint32_t grammar) const { return bases_.at(grammar); }
     const std::vector<MeshDrawInfo>& meshes() const { return draws_; }
     const std::vector<GpuShape>& shapes() const { return shapes_; }
@@ -62,6 +64,7 @@ private:
     std::vector<MeshDrawInfo> draws_;
     std::vector<GpuShape> shapes_;
     std::vector<glm::vec4> coarse_;
+    uint32_t firstCoarse_ = 0;
     uint32_t vertices_ = 0, indices_ = 0, table_ = 0;
     uint64_t bytes_ = 0;
 };
