@@ -106,8 +106,9 @@ CullPages selectCullPages(const CullInputs& inputs) {
         layout.total += layout.capacity[s];
     }
     // A coarse shape has no records of its own: it shares the lists of the shape it serves,
-    // whose terminals are each drawn with one of the two meshes (its LOD4 entries fill them
-    // from the back, where impostor entries would go; a shape with a coarse mesh has none).
+    // whose terminals are each drawn with one of the two meshes. The coarse shape's entries
+    // fill the lists from the back, where impostor entries would go: a shape with an impostor
+    // never draws its coarse mesh (meshShape).
     for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s) {
         if (inputs.shapeCoarse[s].w < 0.0f || inputs.shapeImpostor.at(s)) continue;
         const uint32_t coarse = uint32_t(inputs.shapeCoarse[s].w);
