@@ -85,6 +85,9 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
         const MeshDrawInfo& mesh = meshes[s];
         meshInfo[s] = glm::uvec4(mesh.indexCount, mesh.firstIndex, uint32_t(mesh.baseVertex), 0u);
     }
+    // A coarse shape has no impostor; its z says that its entries fill its lists from the back.
+    for (const glm::vec4& c : coarse)
+        if (c.w >= 0.0f) shapes.at(uint32_t(c.w)).z = HEXLOD_COARSE_SHAPE;
 
     auto upload = [this](BufferIndex index, const void* data, uint64_t bytes) {
         reserve(index, bytes);
@@ -93,8 +96,6 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     upload(kFrame, &inputs.frame, sizeof inputs.frame);
     upload(kBatches, batches.data(), batches.size() * sizeof(shared::CullBatch));
     upload(kWorkgroups, workgroups.data(), workgroups.size() * sizeof(glm::uvec4));
-    for (const glm::vec4& c : coarse)
-        if (c.w >= 0.0f) shapes.at(uint32_t(c.w)).z = HEXLOD_COARSE_SHAPE;
     upload(kShapes, shapes.data(), shapes.size() * sizeof(glm::uvec4));
     upload(kMeshes, meshInfo.data(), meshInfo.size() * sizeof(glm::uvec4));
     upload(kCoarse, coarse.data(), coarse.size() * sizeof(glm::vec4));
