@@ -2,6 +2,7 @@
 #include "hexlod/render/gl_debug.h"
 #include "hexlod/render/gl_api.h"
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <atomic>
@@ -11,6 +12,13 @@ namespace hexlod::render {
 namespace {
 
 std::atomic<uint64_t> errorCount{0};
+
+// Standard error, never spdlog's default standard output: `walk --json` and the other
+// commands print their results there, and a driver's warning mid-run must not break them.
+spdlog::logger& glLog() {
+    static const std::shared_ptr<spdlog::logger> logger = spdlog::stderr_color_mt("gl");
+    return *logger;
+}
 
 const char* sourceName(GLenum source) {
     switch (source) {
@@ -35,7 +43,7 @@ void APIENTRY onMessage(GLenum source, GLenum type, GLuint id, GLenum severity, 
     // Compile errors already reach the caller through ShaderProgram::build, mapped to file:line;
     // repeating them here as GL errors would only say it twice.
     if (source == GL_DEBUG_SOURCE_SHADER_COMPILER) {
-        spdlog::debug("GL {} {}: {}", sourceName(source), id, text);
+        glLog().debug("GL {} {}: {}", sourceName(source), id, text);
         return;
     }
     if (type == GL_DEBUG_TYPE_ERROR) ++errorCount;
@@ -44,7 +52,7 @@ void APIENTRY onMessage(GLenum source, GLenum type, GLuint id, GLenum severity, 
         level = spdlog::level::err;
     else if (severity == GL_DEBUG_SEVERITY_MEDIUM)
         level = spdlog::level::warn;
-    spdlog::log(level, "GL {} {}: {}", sourceName(source), id, text);
+    glLog().log(level, "GL {} {}: {}", sourceName(source), id, text);
 }
 
 } // namespace
