@@ -405,9 +405,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stageStart = Clock::now();
     const cells::Frustum frustum(pose.position, pose.forward, pose.up, pose.fovY, aspect, nearPlane,
                                  farPlane);
-    const bool impostors = impostorTextures_.layers() > 0 && options_.mode != RenderMode::AllLod4;
-    inputs.frame =
-        makeCullFrame(frustum, options_.lod, pose.fovY, options_.height, options_.transitionBand, impostors);
+    inputs.frame = makeCullFrame(frustum, options_.lod, pose.fovY, options_.height, options_.transitionBand,
+                                 impostorsDrawn());
     if (options_.mode == RenderMode::AllLod3)
         inputs.frame.lodDistance = glm::vec4(0.0f, std::numeric_limits<float>::max(), 0.0f, 1.0f);
     if (options_.mode == RenderMode::AllLod2) inputs.frame.lodDistance = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
@@ -435,8 +434,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     // 5. The rest of the draws.
     stageStart = Clock::now();
     timer.restart();
-    drawTerminalMeshes(stats, timer);
-    drawImpostors(glm::mat4(glm::inverse(glm::dmat4(uniforms.viewProjection))), stats, timer);
+    drawTerminalMeshes(timer);
+    drawImpostors(glm::mat4(glm::inverse(glm::dmat4(uniforms.viewProjection))), timer);
     if (trees_.hasImpostors() && !billboards.empty()) {
         TreeFrame trees;
         trees.cull = &inputs.frame;
@@ -464,6 +463,9 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     gl::glDepthFunc(GL_LESS);
     stats.gpuWaitMs = millisecondsSince(stageStart);
+    // The cull's counts are statistics only: read once the frame is done, so that the CPU
+    // does not wait for the cull between submitting it and the draws it feeds.
+    countCulledTerminals(stats);
     if (depthTiles_.valid()) {
         const auto dropped = depthTiles_.dropped();
         stats.treeBillboardsOccluded = dropped[size_t(TileTest::TreeBillboards)];
@@ -503,7 +505,7 @@ std::string CityRenderer::arenaNote() const {
     return text;
 }
 
-void CityRenderer::drawTerminalMeshes(FrameStats& stats, PassTimer& timer) {
+void CityRenderer::countCulledTerminals(FrameStats& stats) {
     const uint32_t shapes = cull_.shapeCount();
     if (shapes == 0) return;
     const std::vector<glm::uvec4> counters = cull_.readCounters();
@@ -517,6 +519,11 @@ void CityRenderer::drawTerminalMeshes(FrameStats& stats, PassTimer& timer) {
         stats.triangles += uint64_t(counters[s].x) * shapes_.triangles(s) + uint64_t(counters[s].y) * 2;
         stats.draws += (counters[s].x > 0) + (counters[s].z > 0) + (counters[s].w > 0);
     }
+}
+
+void CityRenderer::drawTerminalMeshes(PassTimer& timer) {
+    const uint32_t shapes = cull_.shapeCount();
+    if (shapes == 0) return;
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
     gl::glBindVertexArray(lod4Vao_);
@@ -529,12 +536,11 @@ void CityRenderer::drawTerminalMeshes(FrameStats& stats, PassTimer& timer) {
     timer.end(DrawPass::TerminalMeshes);
 }
 
-void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, const FrameStats& stats,
-                                 PassTimer& timer) {
+void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTimer& timer) {
     const uint32_t shapes = cull_.shapeCount();
-    if (shapes == 0 || !programs_->impostor.valid() ||
-        stats.terminalsPerLod[3] + stats.terminalsPerLod[2] == 0)
-        return;
+    // Whether the cull wrote impostor entries is known only once it has run; the mode says
+    // when it cannot have, and an indirect draw of none costs the GPU nothing.
+    if (shapes == 0 || !programs_->impostor.valid() || !impostorsDrawn()) return;
     gl::glBindVertexArray(impostorVao_);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, cull_.listBuffer());

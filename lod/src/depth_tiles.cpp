@@ -36,9 +36,9 @@ void DepthTiles::clearCounts() const {
                                   nullptr);
 }
 
-std::array<uint32_t, size_t(TileTest::Count)> DepthTiles::dropped() const {
+std::array<uint32_t, size_t(TileTest::Count)> DepthTiles::dropped() {
     std::array<uint32_t, size_t(TileTest::Count)> counts{};
-    gl::glGetNamedBufferSubData(counts_, 0, kCountBytes, counts.data());
+    readback_.read(counts_, 0, kCountBytes, counts.data());
     return counts;
 }
 

@@ -58,7 +58,7 @@ void GpuCull::reserve(BufferIndex index, uint64_t bytes) {
 uint64_t GpuCull::byteSize() const {
     uint64_t total = 0;
     for (const Buffer& buffer : buffers_) total += buffer.capacity;
-    return total;
+    return total + readback_.byteSize();
 }
 
 void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const MeshDrawInfo> meshes) {
@@ -135,25 +135,21 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
                         GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-std::vector<glm::uvec4> GpuCull::readCounters() const {
+std::vector<glm::uvec4> GpuCull::readCounters() {
     std::vector<glm::uvec4> counters(shapeCount_);
-    if (shapeCount_)
-        gl::glGetNamedBufferSubData(buffers_[kCounters].id, 0,
-                                    GLsizeiptr(counters.size() * sizeof(glm::uvec4)), counters.data());
+    readback_.read(buffers_[kCounters].id, 0, counters.size() * sizeof(glm::uvec4), counters.data());
     return counters;
 }
 
-uint32_t GpuCull::readOccluded() const {
+uint32_t GpuCull::readOccluded() {
     uint32_t occluded = 0;
-    gl::glGetNamedBufferSubData(buffers_[kOccluded].id, 0, sizeof occluded, &occluded);
+    readback_.read(buffers_[kOccluded].id, 0, sizeof occluded, &occluded);
     return occluded;
 }
 
-std::vector<gpu::GpuTerminal> GpuCull::readLists() const {
+std::vector<gpu::GpuTerminal> GpuCull::readLists() {
     std::vector<gpu::GpuTerminal> lists(layout_.total);
-    if (!lists.empty())
-        gl::glGetNamedBufferSubData(buffers_[kLists].id, 0,
-                                    GLsizeiptr(lists.size() * sizeof(gpu::GpuTerminal)), lists.data());
+    readback_.read(buffers_[kLists].id, 0, lists.size() * sizeof(gpu::GpuTerminal), lists.data());
     return lists;
 }
 

@@ -147,10 +147,15 @@ private:
         std::vector<glm::uvec2> runs = {};
     };
     static constexpr uint8_t kVolumeRings = 3;
-    // LOD4 meshes; also counts every terminal drawn, per LOD, into stats.
-    void drawTerminalMeshes(FrameStats& stats, PassTimer& timer);
+    void drawTerminalMeshes(PassTimer& timer); // LOD4 meshes
+    // Every terminal the cull sent to each LOD, into stats (waits for the cull).
+    void countCulledTerminals(FrameStats& stats);
+    // Whether the cull may send terminals to impostors: there are some, and the mode allows it.
+    bool impostorsDrawn() const {
+        return impostorTextures_.layers() > 0 && options_.mode != RenderMode::AllLod4;
+    }
     // LOD2 and LOD3; LOD3 ray-casts from the unprojected screen (inverseViewProjection).
-    void drawImpostors(const glm::mat4& inverseViewProjection, const FrameStats& stats, PassTimer& timer);
+    void drawImpostors(const glm::mat4& inverseViewProjection, PassTimer& timer);
     // The base volumes ring by ring, each against the depth tiles of the rings before it: at
     // street level most of the city stands behind the street's walls.
     void drawVolumeRings(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,

@@ -7,6 +7,7 @@
 // whole (depth_tiles.glsl), counting them per pass.
 #pragma once
 
+#include "hexlod/render/buffer_readback.h"
 #include "hexlod/render/shader_program.h"
 
 #include <array>
@@ -40,7 +41,7 @@ public:
     // uniforms of `program` for pass `test`; `enabled` false makes every rectangle visible.
     void bind(const render::ShaderProgram& program, uint32_t unit, TileTest test, bool enabled) const;
     // Rectangles each test dropped since clearCounts(), by TileTest. Waits for the GL.
-    std::array<uint32_t, size_t(TileTest::Count)> dropped() const;
+    std::array<uint32_t, size_t(TileTest::Count)> dropped();
     // The tiles as built last, row by row from the bottom (waits for the GL): the cull pass's
     // occlusion test reads the texture, its CPU side this copy.
     std::vector<float> read() const;
@@ -48,11 +49,12 @@ public:
     uint32_t columns() const { return columns_; }
     uint32_t rows() const { return rows_; }
     bool valid() const { return counts_ != 0; }
-    uint64_t byteSize() const { return uint64_t(columns_) * rows_ * sizeof(float); }
+    uint64_t byteSize() const { return uint64_t(columns_) * rows_ * sizeof(float) + readback_.byteSize(); }
 
 private:
     render::ShaderProgram program_;
     uint32_t texture_ = 0, counts_ = 0, columns_ = 0, rows_ = 0, samples_ = 1;
+    render::BufferReadback readback_;
 };
 
 } // namespace hexlod::lod

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "hexlod/lod/cull_inputs.h"
+#include "hexlod/render/buffer_readback.h"
 #include "hexlod/render/shader_program.h"
 
 #include <glm/vec4.hpp>
@@ -53,11 +54,11 @@ public:
     uint64_t byteSize() const; // GPU memory of the pass's buffers
 
     // Per shape: LOD4, impostor, LOD3, LOD2 entries (waits for the pass).
-    std::vector<glm::uvec4> readCounters() const;
+    std::vector<glm::uvec4> readCounters();
     // Terminals the occlusion test culled one by one (waits for the pass).
-    uint32_t readOccluded() const;
+    uint32_t readOccluded();
     // The draw lists as written (tests; waits for the pass).
-    std::vector<gpu::GpuTerminal> readLists() const;
+    std::vector<gpu::GpuTerminal> readLists();
 
 private:
     enum BufferIndex {
@@ -82,6 +83,7 @@ private:
 
     render::ShaderProgram cull_, finalize_;
     Buffer buffers_[kBufferCount];
+    render::BufferReadback readback_;
     DrawListLayout layout_;
     PageStats stats_;
     uint32_t shapeCount_ = 0;
