@@ -77,16 +77,15 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
 bool writeFramesCsv(const std::string& path, const std::vector<lod::FrameStats>& frames, std::string& error) {
     std::ofstream out(path);
     out << "frame,frame_ms,schedule_ms,generation_ms,upload_ms,cull_ms,draw_ms,gpu_wait_ms,triangles,draws,"
-           "lod2_terminals,lod3_terminals,lod4_terminals,lod0_cells,lod1_cells,terminal_set_cells,visible_"
-           "cells,"
-           "cache_bytes,gpu_bytes,impostor_bytes,resident_bytes\n";
+           "lod2_terminals,lod3_terminals,lod4_terminals,lod4_coarse_terminals,lod0_cells,lod1_cells,"
+           "terminal_set_cells,visible_cells,cache_bytes,gpu_bytes,impostor_bytes,resident_bytes\n";
     for (const lod::FrameStats& f : frames) {
         out << f.frame << ',' << f.frameMs << ',' << f.scheduleMs << ',' << f.generationMs << ','
             << f.uploadMs << ',' << f.cullMs << ',' << f.drawMs << ',' << f.gpuWaitMs << ',' << f.triangles
             << ',' << f.draws << ',' << f.terminalsPerLod[2] << ',' << f.terminalsPerLod[3] << ','
-            << f.terminalsPerLod[4] << ',' << f.cellsPerLod[0] << ',' << f.cellsPerLod[1] << ','
-            << f.cellsPerLod[4] << ',' << f.visibleCells << ',' << f.cacheBytes << ',' << f.gpuBytes << ','
-            << f.impostorBytes << ',' << f.residentBytes() << '\n';
+            << f.terminalsPerLod[4] << ',' << f.coarseTerminals << ',' << f.cellsPerLod[0] << ','
+            << f.cellsPerLod[1] << ',' << f.cellsPerLod[4] << ',' << f.visibleCells << ',' << f.cacheBytes
+            << ',' << f.gpuBytes << ',' << f.impostorBytes << ',' << f.residentBytes() << '\n';
     }
     if (!out) {
         error = path + ": cannot write";

@@ -6,9 +6,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
 
 namespace hexlod::test {
 namespace {
@@ -56,6 +61,35 @@ TEST(RenderCli, WalkJsonAndItsFiles) {
     EXPECT_TRUE(lod1) << j["notes"];
     for (const char* file : {"frames.json", "frames.csv", "summary.json", "frame_ms.svg", "frame_00000.png"})
         EXPECT_TRUE(std::filesystem::exists(dir + "/out/" + file)) << file;
+
+    // frames.csv says what frames.json says, column by column, one row per frame.
+    const Json frames = Json::parse(std::ifstream(dir + "/out/frames.json"));
+    std::ifstream csv(dir + "/out/frames.csv");
+    std::string line;
+    ASSERT_TRUE(std::getline(csv, line));
+    std::vector<std::string> header;
+    for (std::stringstream columns(line); std::getline(columns, line, ',');) header.push_back(line);
+    const std::map<std::string, Json::json_pointer> sources = {
+        {"frame", Json::json_pointer("/frame")},
+        {"triangles", Json::json_pointer("/triangles")},
+        {"lod4_terminals", Json::json_pointer("/terminals_per_lod/lod4")},
+        {"lod4_coarse_terminals", Json::json_pointer("/lod4_coarse_terminals")},
+        {"resident_bytes", Json::json_pointer("/resident_bytes")}};
+    for (const auto& [name, pointer] : sources)
+        EXPECT_NE(std::find(header.begin(), header.end(), name), header.end()) << name;
+    size_t rows = 0;
+    for (; std::getline(csv, line); ++rows) {
+        ASSERT_LT(rows, frames.size());
+        std::vector<std::string> cells;
+        for (std::stringstream columns(line); std::getline(columns, line, ',');) cells.push_back(line);
+        ASSERT_EQ(cells.size(), header.size());
+        for (size_t c = 0; c < header.size(); ++c) {
+            if (auto source = sources.find(header[c]); source != sources.end()) {
+                EXPECT_EQ(cells[c], frames[rows][source->second].dump()) << header[c] << " in row " << rows;
+            }
+        }
+    }
+    EXPECT_EQ(rows, frames.size());
 }
 
 TEST(RenderCli, WalkTimesEveryDrawPassWhenAsked) {
