@@ -26,7 +26,8 @@ CLI::App* registerWalkCommand(CLI::App& app, WalkOptions& o) {
     cmd->add_option("--mode", o.mode, "lod, or one LOD forced on everything: lod4, lod3, lod2, lod1, lod0");
     cmd->add_flag("--json", o.json, "Print the summary as one JSON object");
     cmd->add_flag("--time-passes", o.timePasses,
-                  "Finish and time every draw pass (pass_ms); slows the frame a little");
+                  "Time every draw pass (pass_ms): GL timestamps on a GPU, else a finish after each pass, "
+                  "which slows the frame a little");
     cmd->add_flag("--keep-hidden", o.keepHidden,
                   "Draw what the occluders hide instead of culling it, to measure what culling saves");
     addRenderOptions(*cmd, o.render);
@@ -77,7 +78,9 @@ int runWalkCommand(const WalkOptions& o) {
     options.lod = profile;
     options.schedulerWorkers = o.render.workers;
     options.samples = o.render.samples;
-    options.timePasses = o.timePasses;
+    if (o.timePasses)
+        options.passClock = session.gl->info().gpuTimestamps() ? lod::PassClock::GpuTimestamps
+                                                               : lod::PassClock::FinishAndWall;
     options.dropHidden = !o.keepHidden;
     lod::CityRenderer renderer(*session.catalog, *session.cache, *session.meshes, &session.impostors,
                                options);
@@ -115,6 +118,7 @@ int runWalkCommand(const WalkOptions& o) {
     summary["mode"] = lod::renderModeName(mode);
     summary["viewport"] = {options.width, options.height};
     summary["gl_renderer"] = session.gl->info().renderer;
+    summary["pass_clock"] = lod::passClockName(options.passClock);
     summary["notes"] = session.notes;
     summary["peak_rss_bytes"] = peakRssBytes();
     summary["cache_budget_bytes"] = session.config.cache.memoryBytes;

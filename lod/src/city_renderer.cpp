@@ -393,7 +393,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glDisable(GL_BLEND);
     gl::glEnable(GL_CULL_FACE);
     gl::glCullFace(GL_BACK);
-    PassTimer timer(options_.timePasses, stats.passMs);
+    PassTimer timer(options_.passClock, stats.passMs);
     if (depthTiles_.valid()) depthTiles_.clearCounts();
     drawVolumeRings(volumes, pose, nearPlane, farPlane, stats, timer);
     stats.triangles += ground_.draw(programs_->volume, pose.position);
@@ -463,6 +463,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     gl::glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     gl::glDepthFunc(GL_LESS);
     stats.gpuWaitMs = millisecondsSince(stageStart);
+    timer.collect();
     // The cull's counts are statistics only: read once the frame is done, so that the CPU
     // does not wait for the cull between submitting it and the draws it feeds.
     countCulledTerminals(stats);

@@ -22,23 +22,63 @@ const char* drawPassName(DrawPass pass) {
     return "trees";
 }
 
-PassTimer::PassTimer(bool enabled, PassTimes& times) : enabled_(enabled), times_(times) {
-    if (enabled_) gl::glFinish();
-    start_ = std::chrono::steady_clock::now();
+const char* passClockName(PassClock clock) {
+    switch (clock) {
+    case PassClock::FinishAndWall:
+        return "finish-and-wall";
+    case PassClock::GpuTimestamps:
+        return "gpu-timestamps";
+    case PassClock::Off:
+        break;
+    }
+    return "off";
+}
+
+PassTimer::PassTimer(PassClock clock, PassTimes& times) : clock_(clock), times_(times) {
+    restart();
+}
+
+PassTimer::~PassTimer() {
+    if (!queries_.empty()) gl::glDeleteQueries(GLsizei(queries_.size()), queries_.data());
+}
+
+uint32_t PassTimer::stamp() {
+    GLuint query = 0;
+    gl::glCreateQueries(GL_TIMESTAMP, 1, &query);
+    gl::glQueryCounter(query, GL_TIMESTAMP);
+    queries_.push_back(query);
+    return query;
 }
 
 void PassTimer::restart() {
-    if (!enabled_) return;
+    if (clock_ == PassClock::GpuTimestamps) startQuery_ = stamp();
+    if (clock_ != PassClock::FinishAndWall) return;
     gl::glFinish();
     start_ = std::chrono::steady_clock::now();
 }
 
 void PassTimer::end(DrawPass pass) {
-    if (!enabled_) return;
+    if (clock_ == PassClock::GpuTimestamps) {
+        const uint32_t end = stamp();
+        spans_.push_back({pass, startQuery_, end});
+        startQuery_ = end;
+    }
+    if (clock_ != PassClock::FinishAndWall) return;
     gl::glFinish();
     const auto now = std::chrono::steady_clock::now();
     times_[size_t(pass)] += std::chrono::duration<double, std::milli>(now - start_).count();
     start_ = now;
+}
+
+void PassTimer::collect() {
+    for (const Span& span : spans_) {
+        GLuint64 start = 0, end = 0;
+        gl::glGetQueryObjectui64v(span.start, GL_QUERY_RESULT, &start);
+        gl::glGetQueryObjectui64v(span.end, GL_QUERY_RESULT, &end);
+        // Nanoseconds; a GL whose timestamps do not advance gives 0, never a negative time.
+        if (end > start) times_[size_t(span.pass)] += double(end - start) / 1e6;
+    }
+    spans_.clear();
 }
 
 } // namespace hexlod::lod

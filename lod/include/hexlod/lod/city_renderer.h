@@ -54,10 +54,10 @@ struct CityRendererOptions {
     uint32_t parallaxIterations = 2;                  // LOD3
     uint32_t schedulerWorkers = 0;   // 0: batches are generated in the frame that needs them (deterministic)
     uint32_t maxBatchesPerFrame = 0; // 0: no cap
-    // Ends every draw pass with glFinish and times it (FrameStats::passMs): where a frame's
-    // GL time goes, on any GL, timer queries or not. The finishes cost a tiled rasteriser
-    // its overlap between passes, so a timed frame is slower than an untimed one.
-    bool timePasses = false;
+    // Times every draw pass (FrameStats::passMs): where a frame's GL time goes. GL timestamps
+    // where they advance (a GPU); else glFinish after each pass and the wall clock, which
+    // costs a tiled rasteriser its overlap between passes, so such a frame is slower.
+    PassClock passClock = PassClock::Off;
     // Culls terminals, and drops LOD3 impostors and tree billboards whole, that the depth drawn
     // before them hides (DepthTiles). Off only to check that it changes no pixel.
     bool dropHidden = true;
@@ -100,7 +100,7 @@ struct FrameStats {
     uint64_t cacheBytes = 0;                  // terminal sets in the cache's memory tier
     uint64_t gpuBytes = 0;                    // arena, draw lists, meshes, base volumes, frame target
     uint64_t impostorBytes = 0;               // impostor textures
-    // GL milliseconds per draw pass, with CityRendererOptions::timePasses; 0 otherwise.
+    // GL milliseconds per draw pass, with CityRendererOptions::passClock; 0 otherwise.
     PassTimes passMs{};
     uint64_t residentBytes() const { return cacheBytes + gpuBytes + impostorBytes; }
 };

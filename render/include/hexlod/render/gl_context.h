@@ -29,7 +29,11 @@ struct GlContextInfo {
     GlBackend backend = GlBackend::Auto;
     std::string vendor, renderer, version;
     bool software = false;          // llvmpipe, softpipe or another CPU rasteriser
-    bool timerQueriesCount = false; // GL_TIMESTAMP advances (llvmpipe reports 0)
+    bool timerQueriesCount = false; // GL_TIMESTAMP advances
+    // Whether GL timestamps time the GPU's work. llvmpipe's advance, but they are taken as
+    // commands are queued, before its threads rasterise them: a pass there reads far less
+    // than it costs.
+    bool gpuTimestamps() const { return timerQueriesCount && !software; }
 };
 
 class GlContext {
