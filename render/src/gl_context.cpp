@@ -67,8 +67,8 @@ bool finishContext(GlBackend backend, bool debug, void (*(*load)(const char*))()
     for (const char* name : {"llvmpipe", "softpipe", "SWR", "Software Rasterizer"}) {
         if (info.renderer.find(name) != std::string::npos) info.software = true;
     }
-    // Some software GLs answer timer queries with 0; frame timing must then use glFinish and
-    // wall time.
+    // Whether GL_TIMESTAMP advances at all; GlContextInfo::gpuTimestamps says whether it
+    // also times the GPU's work.
     GLuint queries[2];
     gl::glCreateQueries(GL_TIMESTAMP, 2, queries);
     gl::glQueryCounter(queries[0], GL_TIMESTAMP);

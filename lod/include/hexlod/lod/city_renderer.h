@@ -55,8 +55,8 @@ struct CityRendererOptions {
     uint32_t schedulerWorkers = 0;   // 0: batches are generated in the frame that needs them (deterministic)
     uint32_t maxBatchesPerFrame = 0; // 0: no cap
     // Times every draw pass (FrameStats::passMs): where a frame's GL time goes. GL timestamps
-    // where they advance (a GPU); else glFinish after each pass and the wall clock, which
-    // costs a tiled rasteriser its overlap between passes, so such a frame is slower.
+    // where they time the GPU's work (GlContextInfo::gpuTimestamps); else glFinish after each
+    // pass and the wall clock, which costs a tiled rasteriser its overlap between passes.
     PassClock passClock = PassClock::Off;
     // Culls terminals, and drops LOD3 impostors and tree billboards whole, that the depth drawn
     // before them hides (DepthTiles). Off only to check that it changes no pixel.
