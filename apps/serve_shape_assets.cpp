@@ -3,6 +3,7 @@
 #include "serve_species_bakery.h"
 #include "shape_mesh_glb.h"
 
+#include "hexlod/lod/coarse_meshes.h"
 #include "hexlod/render/image_io.h"
 
 #include <chrono>
@@ -28,20 +29,39 @@ nlohmann::json json3(const glm::vec3& v) {
     return {v.x, v.y, v.z};
 }
 
-// Every declared shape's mesh; shapes that share a mesh object share its bytes.
-size_t addMeshes(const render::TerminalMeshLibrary& library, server::ShapeAssets& assets) {
+// Every declared shape's mesh, and the coarse mesh of each tree part that has one (the meshes
+// the native renderer's cull pass picks between); shapes that share a mesh share its bytes.
+void addMeshes(const cells::BatchCatalog& catalog, const render::TerminalMeshLibrary& library,
+               server::ShapeAssets& assets) {
     std::map<const render::TerminalMesh*, AssetBytes> encoded;
+    auto glb = [&](const render::TerminalMesh& mesh) {
+        AssetBytes& bytes = encoded[&mesh];
+        if (!bytes) bytes = share(shapeMeshGlb(mesh, mesh.shape));
+        return bytes;
+    };
+    std::vector<std::pair<uint32_t, uint16_t>> globalShapes; // the ShapeTable's numbering
     assets.meshes.resize(library.grammarCount());
     for (uint32_t g = 0; g < library.grammarCount(); ++g) {
         for (uint16_t s = 0; s < library.shapeCount(g); ++s) {
             const render::TerminalMesh& mesh = library.mesh(g, s);
-            AssetBytes& bytes = encoded[&mesh];
-            if (!bytes) bytes = share(shapeMeshGlb(mesh, mesh.shape));
-            assets.meshes[g].push_back(server::MeshAsset{mesh.contentHash, bytes, array3(mesh.nominalSize)});
+            assets.meshes[g].push_back(
+                server::MeshAsset{mesh.contentHash, glb(mesh), array3(mesh.nominalSize), {}});
+            globalShapes.emplace_back(g, s);
         }
     }
+    const size_t fine = encoded.size();
+    for (const lod::CoarseMesh& coarse : lod::treeCoarseMeshes(catalog, library)) {
+        const auto [g, s] = globalShapes.at(coarse.shape);
+        assets.meshes[g][s]->coarse =
+            server::CoarseMeshAsset{coarse.mesh->contentHash, glb(*coarse.mesh), array3(coarse.deviation),
+                                    uint32_t(coarse.mesh->triangleCount())};
+    }
     assets.meshesServed = true;
-    return encoded.size();
+    const uint32_t grammars = library.grammarCount();
+    assets.notes.push_back("terminal meshes (glTF): " + std::to_string(fine) + " distinct meshes for " +
+                           std::to_string(grammars) + (grammars == 1 ? " grammar" : " grammars") +
+                           ", unit scope space; " + std::to_string(encoded.size() - fine) +
+                           " coarse meshes of tree parts");
 }
 
 // The normal-and-depth view as an 8-bit image: n * 0.5 + 0.5 and depth * 0.5 + 0.5, so an
@@ -158,11 +178,7 @@ ServeAssets buildShapeAssets(const cells::BatchCatalog& catalog, const ServeAsse
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<render::TerminalMeshLibrary> library = sceneMeshLibrary(catalog);
     for (const std::string& note : library->notes()) assets.notes.push_back("meshes: " + note);
-    const size_t distinct = addMeshes(*library, assets);
-    const uint32_t grammars = catalog.index().grammarCount();
-    assets.notes.push_back("terminal meshes (glTF): " + std::to_string(distinct) + " distinct meshes for " +
-                           std::to_string(grammars) + (grammars == 1 ? " grammar" : " grammars") +
-                           ", unit scope space");
+    addMeshes(catalog, *library, assets);
     if (!setup.render.impostors) {
         assets.notes.push_back("impostors (EXR, PNG): off (--no-impostors)");
         return out;

@@ -63,6 +63,13 @@ std::string SceneService::meshUrl(uint32_t grammar, uint32_t shape) const {
            cache::hexDigest(mesh->hash) + ".glb";
 }
 
+std::string SceneService::coarseMeshUrl(uint32_t grammar, uint32_t shape) const {
+    const MeshAsset* mesh = assets_.mesh(grammar, shape);
+    if (!mesh || !mesh->coarse) return {};
+    return "/api/v1/meshes/" + std::to_string(grammar) + "/" + std::to_string(shape) + "/" +
+           cache::hexDigest(mesh->coarse->hash) + ".coarse.glb";
+}
+
 std::string SceneService::impostorUrl(uint32_t grammar, uint32_t shape, const char* suffix) const {
     const ImpostorAsset* impostor = assets_.impostor(grammar, shape);
     if (!impostor) return {};
@@ -86,6 +93,11 @@ Json SceneService::shapeJson(uint32_t grammar, uint32_t shape) const {
         mesh ? vec3Json(mesh->nominalSize)
              : Json{decimal(s.width), decimal(s.height), decimal(s.depthRatio * std::min(s.width, s.height))};
     out["mesh_url"] = mesh ? Json(meshUrl(grammar, shape)) : Json(nullptr);
+    out["coarse_mesh"] = nullptr;
+    if (mesh && mesh->coarse)
+        out["coarse_mesh"] = {{"url", coarseMeshUrl(grammar, shape)},
+                              {"deviation", vec3Json(mesh->coarse->deviation)},
+                              {"triangles", mesh->coarse->triangles}};
     const ImpostorAsset* impostor = assets_.impostor(grammar, shape);
     if (!impostor) {
         out["impostor"] = nullptr;

@@ -1,7 +1,7 @@
-// ServiceApi: the shape asset routes (docs/protocol.md): a terminal shape's mesh as .glb, its
-// impostor's albedo, normal-depth and EXR files, and the same files of a tree species' impostor. Every URL
-// carries its content key, so a reply is immutable and a stale key gets 404 naming the current URL, as batch
-// content does.
+// ServiceApi: the shape asset routes (docs/protocol.md): a terminal shape's mesh (and coarse mesh) as .glb,
+// its impostor's albedo, normal-depth and EXR files, and the same files of a tree species' impostor. Every
+// URL carries its content key, so a reply is immutable and a stale key gets 404 naming the current URL, as
+// batch content does.
 #include "hexlod/server/service_api.h"
 
 #include "hexlod/cache/batch_key.h"
@@ -90,13 +90,24 @@ void ServiceApi::shapeMesh(const RequestContext& c, Respond respond) const {
     Reply error;
     const auto target = parseShapeTarget(c, assets.meshesServed, "terminal meshes", error);
     if (!target) return respond(std::move(error));
-    if (target->suffix != ".glb")
-        return respond(errorReply(404, "a terminal mesh is <key>.glb, not '" + target->suffix + "'"));
+    const bool coarse = target->suffix == ".coarse.glb";
+    if (!coarse && target->suffix != ".glb")
+        return respond(
+            errorReply(404, "a terminal mesh is <key>.glb, or <key>.coarse.glb for its coarse mesh, not '" +
+                                target->suffix + "'"));
     const MeshAsset* mesh = assets.mesh(target->grammar, target->shape);
     if (!mesh) return respond(errorReply(404, "the scene declares no " + shapeName(*target)));
-    if (mesh->hash != target->key)
-        return respond(staleKey("mesh", service_.meshUrl(target->grammar, target->shape)));
-    respond(immutableBytes(c.request, mesh->hash, "model/gltf-binary", mesh->glb));
+    if (!coarse) {
+        if (mesh->hash != target->key)
+            return respond(staleKey("mesh", service_.meshUrl(target->grammar, target->shape)));
+        return respond(immutableBytes(c.request, mesh->hash, "model/gltf-binary", mesh->glb));
+    }
+    if (!mesh->coarse)
+        return respond(
+            errorReply(404, shapeName(*target) + " has no coarse mesh (only tree parts have one)"));
+    if (mesh->coarse->hash != target->key)
+        return respond(staleKey("coarse mesh", service_.coarseMeshUrl(target->grammar, target->shape)));
+    respond(immutableBytes(c.request, mesh->coarse->hash, "model/gltf-binary", mesh->coarse->glb));
 }
 
 void ServiceApi::shapeImpostor(const RequestContext& c, Respond respond) const {

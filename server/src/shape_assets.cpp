@@ -31,7 +31,10 @@ uint64_t ShapeAssets::byteSize() const {
     std::unordered_set<const void*> seen;
     for (const auto& list : meshes)
         for (const auto& m : list)
-            if (m) count(m->glb, seen, bytes);
+            if (m) {
+                count(m->glb, seen, bytes);
+                if (m->coarse) count(m->coarse->glb, seen, bytes);
+            }
     auto files = [&](const ImpostorAsset& i) {
         for (const AssetBytes* b : {&i.albedoPng, &i.normalPng, &i.exr}) count(*b, seen, bytes);
     };

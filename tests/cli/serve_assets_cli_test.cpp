@@ -11,6 +11,8 @@
 
 #include "hexlod/grammar/rule_reachability.h"
 #include "hexlod/impostor/impostor_store.h"
+#include "hexlod/render/mesh_deviation.h"
+#include "hexlod/render/procedural_meshes.h"
 #include "hexlod/render/terminal_mesh_library.h"
 
 #include <gtest/gtest.h>
@@ -242,6 +244,45 @@ TEST_F(ServeAssets, EveryShapeMeshDecodesToTheLibraryMesh) {
             EXPECT_EQ(shape["nominal_size"][0].get<float>(), mesh.nominalSize.x);
         }
     }
+}
+
+// Tree parts, and only they, carry a coarse mesh: the generator's coarser level with the
+// deviation the native renderer decides with, served as its own .glb.
+TEST_F(ServeAssets, TreePartsCarryTheirCoarseMesh) {
+    std::vector<const grammar::CompiledGrammar*> grammars;
+    for (size_t g = 0; g < (*summary)["grammars"].size(); ++g) grammars.push_back(&grammarAt(g));
+    const render::TerminalMeshLibrary library(grammars);
+    size_t coarseShapes = 0;
+    for (size_t g = 0; g < grammars.size(); ++g) {
+        const bool tree = (*summary)["grammars"][g]["kind"] == "tree";
+        for (size_t s = 0; s < library.shapeCount(uint32_t(g)); ++s) {
+            const Json& shape = (*summary)["grammars"][g]["shapes"][s];
+            const render::TerminalMesh& fine = library.mesh(uint32_t(g), uint16_t(s));
+            const std::optional<render::TerminalMesh> coarse =
+                tree ? render::buildCoarserProceduralMesh(grammars[g]->shapes.at(s), fine) : std::nullopt;
+            ASSERT_EQ(shape["coarse_mesh"].is_null(), !coarse) << shape["name"];
+            if (!coarse) continue;
+            ++coarseShapes;
+            EXPECT_EQ(shape["coarse_mesh"]["triangles"], coarse->triangleCount());
+            const glm::vec3 deviation = render::meshDeviation(fine, *coarse);
+            for (int a = 0; a < 3; ++a)
+                EXPECT_EQ(shape["coarse_mesh"]["deviation"][a].get<float>(), deviation[a]) << shape["name"];
+            const auto reply = connection->get(shape["coarse_mesh"]["url"]);
+            ASSERT_EQ(reply.status, 200) << shape["coarse_mesh"]["url"];
+            tinygltf::Model model;
+            tinygltf::TinyGLTF loader;
+            std::string err, warn;
+            ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                                    reinterpret_cast<const unsigned char*>(reply.body.data()),
+                                                    unsigned(reply.body.size())))
+                << err;
+            const tinygltf::Accessor& indices =
+                model.accessors.at(size_t(model.meshes.at(0).primitives.at(0).indices));
+            EXPECT_EQ(indices.count, 3 * coarse->triangleCount()) << shape["name"];
+            EXPECT_LT(indices.count, 3 * fine.triangleCount()) << shape["name"];
+        }
+    }
+    EXPECT_GT(coarseShapes, 0u) << "the scene's trees have parts with a coarser level";
 }
 
 TEST_F(ServeAssets, PngsAreTheAtlasAndAgreeWithTheStoredExr) {

@@ -36,7 +36,7 @@ using hexlod::fuzz::check;
 server::ShapeAssets shapeAssets() {
     const auto bytes = std::make_shared<const std::vector<uint8_t>>(std::vector<uint8_t>{'g', 'l', 'T', 'F'});
     server::ShapeAssets assets;
-    assets.meshes = {{server::MeshAsset{0x0123456789abcdef, bytes, {1.0f, 1.0f, 0.1f}}, std::nullopt}};
+    assets.meshes = {{server::MeshAsset{0x0123456789abcdef, bytes, {1.0f, 1.0f, 0.1f}, {}}, std::nullopt}};
     server::ImpostorAsset impostor;
     impostor.key = 0x0123456789abcdef;
     impostor.albedoPng = impostor.normalPng = bytes;

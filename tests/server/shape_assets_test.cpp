@@ -22,16 +22,18 @@ std::string text(const server::AssetBytes& b) {
 }
 
 // Grammar 0: shape 0 has a mesh and an impostor baked without a store (no EXR), shape 1 a
-// mesh only; grammar 1 has one shape with a mesh and a stored impostor; the last grammar has
-// one tree species, baked without a store.
+// mesh and a coarse mesh (as a tree part has); grammar 1 has one shape with a mesh and a
+// stored impostor; the last grammar has one tree species, baked without a store.
 server::ShapeAssets handMadeAssets(const server::SceneService& service) {
     server::ShapeAssets assets;
     const size_t grammars =
         service.withCatalog([](const cells::BatchCatalog& c) { return c.index().grammarCount(); });
     assets.meshes.resize(grammars);
     assets.impostors.resize(grammars);
-    assets.meshes[0].push_back(server::MeshAsset{0x1234, bytes("glTF mesh 0"), {3.0f, 2.9f, 0.145f}});
-    assets.meshes[0].push_back(server::MeshAsset{0xabcd, bytes("glTF mesh 1"), {1.0f, 1.0f, 0.1f}});
+    assets.meshes[0].push_back(server::MeshAsset{0x1234, bytes("glTF mesh 0"), {3.0f, 2.9f, 0.145f}, {}});
+    assets.meshes[0].push_back(server::MeshAsset{0xabcd, bytes("glTF mesh 1"), {1.0f, 1.0f, 0.1f}, {}});
+    assets.meshes[0][1]->coarse =
+        server::CoarseMeshAsset{0xabce, bytes("coarse glTF mesh 1"), {0.01f, 0.02f, 0.1f}, 28};
     server::ImpostorAsset impostor;
     impostor.key = 0xfeed;
     impostor.centre = {1.5f, 1.45f, 0.0f};
@@ -40,7 +42,7 @@ server::ShapeAssets handMadeAssets(const server::SceneService& service) {
     impostor.albedoPng = bytes("albedo png");
     impostor.normalPng = bytes("normal png");
     assets.impostors[0].push_back(impostor);
-    assets.meshes[1].push_back(server::MeshAsset{0x77, bytes("glTF mesh 2"), {1.0f, 1.0f, 1.0f}});
+    assets.meshes[1].push_back(server::MeshAsset{0x77, bytes("glTF mesh 2"), {1.0f, 1.0f, 1.0f}, {}});
     impostor.key = 0xbeef;
     impostor.layer = 1;
     impostor.exr = bytes("exr file");
@@ -93,8 +95,12 @@ TEST_F(ShapeAssetRoutes, TheSummaryListsEachShapesMeshAndImpostor) {
     EXPECT_EQ(impostor["radius"], 2.0);
     EXPECT_EQ(impostor["bounds_max"], Json({3.0, 2.9, 0.1}));
     EXPECT_EQ(impostor["layer"], 0);
+    EXPECT_TRUE(shapes[0]["coarse_mesh"].is_null());
     EXPECT_EQ(shapes[1]["mesh_url"], "/api/v1/meshes/0/1/000000000000abcd.glb");
     EXPECT_TRUE(shapes[1]["impostor"].is_null());
+    EXPECT_EQ(shapes[1]["coarse_mesh"], Json({{"url", "/api/v1/meshes/0/1/000000000000abce.coarse.glb"},
+                                              {"deviation", {0.01, 0.02, 0.1}},
+                                              {"triangles", 28}}));
     // A shape without a mesh entry is listed with null URLs and its declared nominal size.
     EXPECT_TRUE(shapes[2]["mesh_url"].is_null());
     EXPECT_EQ(shapes[2]["nominal_size"].size(), 3u);
@@ -116,6 +122,26 @@ TEST_F(ShapeAssetRoutes, MeshesAreImmutableAndRevalidate) {
         live->get("/api/v1/meshes/0/1/000000000000abcd.glb", {{"If-None-Match", mesh.header("etag")}});
     EXPECT_EQ(again.status, 304);
     EXPECT_TRUE(again.body.empty());
+}
+
+TEST_F(ShapeAssetRoutes, CoarseMeshesAreServedBesideTheirShapesMesh) {
+    const auto coarse = live->get("/api/v1/meshes/0/1/000000000000abce.coarse.glb");
+    ASSERT_EQ(coarse.status, 200) << coarse.body;
+    EXPECT_EQ(coarse.body, "coarse glTF mesh 1");
+    EXPECT_EQ(coarse.header("content-type"), "model/gltf-binary");
+    EXPECT_EQ(coarse.header("etag"), "\"000000000000abce\"");
+    EXPECT_EQ(coarse.header("cache-control"), "public, max-age=31536000, immutable");
+    EXPECT_EQ(live->get("/api/v1/meshes/0/1/000000000000abce.coarse.glb",
+                        {{"If-None-Match", coarse.header("etag")}})
+                  .status,
+              304);
+    // Each key belongs to one of the two meshes: the other's is stale, and names the right URL.
+    const auto fineKey = live->get("/api/v1/meshes/0/1/000000000000abcd.coarse.glb");
+    EXPECT_EQ(fineKey.status, 404);
+    EXPECT_EQ(fineKey.header("x-hexlod-current"), "/api/v1/meshes/0/1/000000000000abce.coarse.glb");
+    const auto coarseKey = live->get("/api/v1/meshes/0/1/000000000000abce.glb");
+    EXPECT_EQ(coarseKey.status, 404);
+    EXPECT_EQ(coarseKey.header("x-hexlod-current"), "/api/v1/meshes/0/1/000000000000abcd.glb");
 }
 
 TEST_F(ShapeAssetRoutes, ImpostorFilesByKindWithTheirTypes) {
@@ -182,6 +208,9 @@ TEST_F(ShapeAssetRoutes, MalformedAndUnknownTargetsSayWhy) {
         {"/api/v1/meshes/0/0/000000000000123g.glb", 400, "16 hex digits"},
         {"/api/v1/meshes/0/0/0000000000001234", 400, "16 hex digits"},
         {"/api/v1/meshes/0/0/0000000000001234.gltf", 404, "<key>.glb"},
+        {"/api/v1/meshes/0/1/000000000000abce.coarse.gltf", 404, "<key>.coarse.glb"},
+        {"/api/v1/meshes/0/0/0000000000001234.coarse.glb", 404, "shape 0 of grammar 0 has no coarse mesh"},
+        {"/api/v1/meshes/0/7/0000000000001234.coarse.glb", 404, "declares no shape 7 of grammar 0"},
         {"/api/v1/meshes/0/7/0000000000001234.glb", 404, "declares no shape 7 of grammar 0"},
         {"/api/v1/meshes/99/0/0000000000001234.glb", 404, "declares no shape 0 of grammar 99"},
         {"/api/v1/impostors/0/1/000000000000feed.albedo.png", 404, "has no impostor"},
@@ -224,7 +253,10 @@ TEST(ShapeAssets, WithoutAnyTheRoutesSay501AndTheNotesSayWhy) {
 TEST(ShapeAssets, ByteSizeCountsSharedBytesOnce) {
     server::ShapeAssets assets;
     const server::AssetBytes shared = bytes("0123456789");
-    assets.meshes = {{server::MeshAsset{1, shared, {}}}, {server::MeshAsset{1, shared, {}}}};
+    assets.meshes = {{server::MeshAsset{1, shared, {}, {}}}, {server::MeshAsset{1, shared, {}, {}}}};
+    const server::AssetBytes coarse = bytes("jk");
+    assets.meshes[0][0]->coarse = server::CoarseMeshAsset{2, coarse, {}, 1};
+    assets.meshes[1][0]->coarse = server::CoarseMeshAsset{2, coarse, {}, 1}; // shared: counted once
     server::ImpostorAsset impostor;
     impostor.albedoPng = bytes("abc");
     impostor.normalPng = bytes("de");
@@ -233,7 +265,7 @@ TEST(ShapeAssets, ByteSizeCountsSharedBytesOnce) {
     species.impostor.albedoPng = bytes("fghi");
     species.impostor.normalPng = impostor.normalPng; // shared: counted once
     assets.species = {species};
-    EXPECT_EQ(assets.byteSize(), 19u);
+    EXPECT_EQ(assets.byteSize(), 21u);
     EXPECT_EQ(text(assets.mesh(1, 0)->glb), "0123456789");
     EXPECT_EQ(assets.mesh(2, 0), nullptr);
     EXPECT_EQ(assets.mesh(0, 1), nullptr);

@@ -108,6 +108,8 @@ public:
     const ShapeAssets& shapeAssets() const { return assets_; }
     // "/api/v1/meshes/{grammar}/{shape}/{hash}.glb"; empty when the shape has no mesh served.
     std::string meshUrl(uint32_t grammar, uint32_t shape) const;
+    // "/api/v1/meshes/{grammar}/{shape}/{hash}.coarse.glb", its coarse mesh; empty without one.
+    std::string coarseMeshUrl(uint32_t grammar, uint32_t shape) const;
     // "/api/v1/impostors/{grammar}/{shape}/{key}" + suffix (".albedo.png", ".normal.png",
     // ".exr"); empty when the shape has no impostor.
     std::string impostorUrl(uint32_t grammar, uint32_t shape, const char* suffix) const;

@@ -21,10 +21,21 @@ namespace hexlod::server {
 
 using AssetBytes = std::shared_ptr<const std::vector<uint8_t>>;
 
+// A coarser mesh of a shape without impostor (a tree part, lod/coarse_meshes.h): a client
+// draws it instead of the shape's mesh where `deviation`, scaled by the terminal's scope,
+// projects under the error bound, the rule of the native renderer's cull pass.
+struct CoarseMeshAsset {
+    uint64_t hash = 0; // its render::TerminalMesh::contentHash: the URL's key
+    AssetBytes glb;
+    std::array<float, 3> deviation{}; // render::meshDeviation from the shape's mesh, unit scope space
+    uint32_t triangles = 0;
+};
+
 struct MeshAsset {
     uint64_t hash = 0; // render::TerminalMesh::contentHash: the URL's key
     AssetBytes glb;
     std::array<float, 3> nominalSize{1.0f, 1.0f, 1.0f};
+    std::optional<CoarseMeshAsset> coarse;
 };
 
 struct ImpostorAsset {
