@@ -52,7 +52,9 @@ async function start() {
     if (!capabilities.terminal_meshes) messages.add('terminal meshes are not served by this service: LOD4 draws stand-in quads', 'notice');
     if (!capabilities.impostors) messages.add('impostors are not served by this service: every terminal is drawn at LOD4', 'notice');
     const libraries = {};
-    for (const g of scene.grammars) libraries[g.index] = new ShapeLibrary(g, { meshes: !!capabilities.terminal_meshes });
+    // ?coarse=0 draws tree parts with their full meshes at any distance, for comparisons.
+    const coarse = params.get('coarse') !== '0';
+    for (const g of scene.grammars) libraries[g.index] = new ShapeLibrary(g, { meshes: !!capabilities.terminal_meshes, coarse });
     const impostors = new ImpostorSet(scene, world.lighting);
     const trees = new TreeImpostors(scene, world.lighting, { multisampled: antialias });
     if (scene.counts?.trees > 0 && !capabilities.tree_billboards)
@@ -205,6 +207,7 @@ async function start() {
             versions: streamer.versions(selection?.cell && streamer.cells.find((c) => c.q === selection.cell[0] && c.r === selection.cell[1])),
             events: eventStatus,
             fps: stats.fps,
+            triangles: world.renderer.info.render.triangles, // of the last frame
         };
     }
     requestAnimationFrame(frame);

@@ -2,10 +2,11 @@
 // (40 trees of the shipped species, a few houses) in chromium. From 150 m the same view is drawn
 // with every tree as terminals, as billboards of its species' impostor, and without trees; the
 // billboards must cover about the pixels the terminals cover and bring the image much closer to
-// the terminals' than no trees at all; by distance (the default) the cut must split the park's
-// batches from nearer and make every tree a billboard from farther; and after the trees are
-// edited, the service bakes species for their new values and the far trees are billboards of
-// those, changing the image. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
+// the terminals' than no trees at all; drawn as terminals this far out, the trees' parts use
+// their coarse meshes, with fewer triangles and an image close to the full meshes' (?coarse=0);
+// by distance (the default) the cut must split the park's batches from nearer and make every
+// tree a billboard from farther; and after the trees are edited, the service bakes species for
+// their new values and the far trees are billboards of those, changing the image. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -81,12 +82,12 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         // South of the park at eye height, 150 m from its nearest cell and farther; by distance,
         // trees are billboards from 195 m at this viewport.
         const near = '0,-300,4,90,0', far = '0,-400,4,90,0';
-        const view = async (trees, camera = near) => {
-            await page.goto(`${base}?camera=${camera}&trees=${trees}`);
+        const view = async (trees, camera = near, options = '') => {
+            await page.goto(`${base}?camera=${camera}&trees=${trees}${options}`);
             await page.waitForFunction(() => window.hexlod?.idle(), null, { timeout: 90000 });
             await page.evaluate(() => document.querySelectorAll('#stats, #tuning, #help, #messages').forEach((e) => (e.style.visibility = 'hidden')));
             await page.waitForTimeout(500);
-            const image = await page.screenshot({ path: path.join(artifacts, `trees-${trees}.png`), timeout: 60000 });
+            const image = await page.screenshot({ path: path.join(artifacts, `trees-${trees}${options.replace(/[&=]/g, '-')}.png`), timeout: 60000 });
             return { image: image.toString('base64'), state: await page.evaluate(() => window.hexlod.state()) };
         };
         const none = await view('none');
@@ -97,6 +98,17 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         assert.equal(billboards.state.streamer.trees.billboards, 40, 'every tree is a billboard');
         assert.equal(terminals.state.streamer.trees.billboards, 0);
         assert.match(billboards.state.trees, /^\d+ species$/);
+        // This far out every tree part with a coarse mesh draws it; with ?coarse=0 none does, and
+        // the two images differ by the meshes' deviation, under the error budget.
+        const full = await view('terminals', near, '&coarse=0');
+        const treeParts = terminals.state.streamer.terminals;
+        assert.ok(treeParts.coarse > 0 && treeParts.coarse <= treeParts[4], `terminals ${JSON.stringify(treeParts)}`);
+        assert.equal(full.state.streamer.terminals.coarse, 0);
+        assert.equal(full.state.streamer.terminals[4], treeParts[4]);
+        const triangleShare = terminals.state.triangles / full.state.triangles;
+        assert.ok(triangleShare < 0.9, `coarse meshes draw ${terminals.state.triangles} of ${full.state.triangles} triangles`);
+        const coarseError = await compare(page, { none: none.image, terminals: full.image, billboards: terminals.image });
+        assert.ok(coarseError.psnrBillboards > 30, `coarse against full meshes: ${coarseError.psnrBillboards.toFixed(2)} dB`);
 
         const c = await compare(page, { none: none.image, terminals: terminals.image, billboards: billboards.image });
         const coverage = c.billboardPixels / c.terminalPixels;
@@ -155,6 +167,8 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         console.log(
             `web.browser trees: billboards cover ${coverage.toFixed(2)} of the terminals' ${c.terminalPixels} pixels (overlap ${c.overlap.toFixed(2)}), ` +
                 `PSNR against terminals ${c.psnrBillboards.toFixed(2)} dB (no trees: ${c.psnrNone.toFixed(2)} dB); ` +
+                `coarse meshes for ${treeParts.coarse} of ${treeParts[4]} LOD4 terminals: ${terminals.state.triangles} triangles against ${full.state.triangles}, ` +
+                `${coarseError.psnrBillboards.toFixed(2)} dB against full meshes; ` +
                 `first view ${terminals.state.loadTime?.toFixed(2)} s with terminals, ${billboards.state.loadTime?.toFixed(2)} s with billboards; ` +
                 `after the edit, ${added.length} species baked and every tree a billboard again in ${rebillboarded.toFixed(2)} s, ${changed} pixels changed`,
         );

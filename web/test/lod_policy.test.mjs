@@ -1,13 +1,15 @@
 // The viewer's LOD policy against the native one (cells/src/scheduler.cpp, lod/src/cull_inputs.cpp,
 // lod/include/hexlod/lod/cull_shared.h): the screen-space error formula, the hysteresis band, the
 // distance to a cell's bounds, the per-terminal LOD distances and the backface rule; the view
-// test that leaves terminals outside the frustum out; and when a moved or turned camera
-// re-decides them.
+// test that leaves terminals outside the frustum out; the coarse mesh's range (meshShape); and
+// when a moved or turned camera re-decides them.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
 import {
     classifyTerminal,
+    COARSE,
+    coarseMeshReach,
     decideCell,
     distanceToBox,
     EXTRUDED,
@@ -68,6 +70,25 @@ test('terminals: LOD3 and LOD2 distances from their geometric errors; backfaces 
     // Behind the wall: the camera at y > wall + depth sees its back.
     assert.equal(classifyTerminal(at(-0.5), axes, 2, 3, 0.3, { lod3, lod2 }, true), 0);
     assert.equal(classifyTerminal(at(-0.2), axes, 2, 3, 0.3, { lod3, lod2 }, true), 4);
+});
+
+test('a coarse mesh is drawn from where its deviation, scaled by the scope, projects under the budget', () => {
+    const { coarse } = terminalLodDistances(profile, camera);
+    // meshShape's reach: |deviation * scope| * (viewport pixels per radian / max sse).
+    assert.ok(Math.abs(coarse - 720 / (2 * Math.tan(Math.PI / 6) * 2)) < 1e-9);
+    const reach = coarseMeshReach([0.01, 0.02, 0.1], 2, 3, 0.3, coarse);
+    assert.ok(Math.abs(reach - Math.hypot(0.02, 0.06, 0.03) * coarse) < 1e-9);
+    const axes = [1, 0, 0, 0, 0, 1, 0, -1, 0];
+    const at = (y) => [-1, y, -1.5]; // the scope centre straight ahead at distance y
+    const distances = terminalLodDistances(profile, camera);
+    assert.equal(classifyTerminal(at(reach + 0.01), axes, 2, 3, 0.3, distances, false, null, 0, reach), COARSE);
+    assert.equal(classifyTerminal(at(reach - 0.01), axes, 2, 3, 0.3, distances, false, null, 0, reach), 4);
+    // The camera may move by `slack` before the lists are sorted again: the coarse mesh starts that much farther.
+    assert.equal(classifyTerminal(at(reach + 0.4), axes, 2, 3, 0.3, distances, false, null, 0.5, reach), 4);
+    assert.equal(classifyTerminal(at(reach + 0.6), axes, 2, 3, 0.3, distances, false, null, 0.5, reach), COARSE);
+    // Shapes with impostors and shapes without a coarse mesh never draw one.
+    assert.equal(classifyTerminal(at(reach + 1), axes, 2, 3, 0.3, distances, true, null, 0, reach), 4);
+    assert.equal(classifyTerminal(at(1e5), axes, 2, 3, 0.3, distances, false), 4);
 });
 
 test('a distance decision is re-made once the camera moves 2 % of the distance, at least 0.5 m', () => {

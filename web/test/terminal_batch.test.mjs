@@ -47,12 +47,12 @@ test('terminals behind their wall or outside the view are left out of every list
     const batch = new TerminalBatch(setOf([[0, 20, 0], [0, -20, 0], [60, 15, 0], [0, 150, 0], [0, 250, 0]]),
         library, material, impostors);
     batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]));
-    assert.deepEqual(batch.counts, { 4: 1, 3: 1, 2: 1, culled: 2 });
+    assert.deepEqual(batch.counts, { 4: 1, 3: 1, 2: 1, culled: 2, coarse: 0 });
     assert.deepEqual(lod4Records(batch), [0]);
     // Without a view only the one behind its wall is left out.
     const all = new TerminalBatch(setOf([[0, 20, 0], [0, -20, 0], [60, 15, 0]]), library, material, impostors);
     all.updateLod([0, 0, 0], distances);
-    assert.deepEqual(all.counts, { 4: 2, 3: 0, 2: 0, culled: 1 });
+    assert.deepEqual(all.counts, { 4: 2, 3: 0, 2: 0, culled: 1, coarse: 0 });
     assert.deepEqual(lod4Records(all), [0, 2]);
 });
 
@@ -65,11 +65,40 @@ test('the lists are sorted again once the view turns by half the margin, and not
     // Turned 70 degrees to the right, towards +x: the terminal at x = 60 is in view, the one
     // straight ahead before is not.
     batch.updateLod([0, 0, 0], distances, null, viewAlong(turned(70)));
-    assert.deepEqual(batch.counts, { 4: 1, 3: 0, 2: 0, culled: 1 });
+    assert.deepEqual(batch.counts, { 4: 1, 3: 0, 2: 0, culled: 1, coarse: 0 });
     assert.deepEqual(lod4Records(batch), [1]);
     // A changed field of view sorts again too, even unturned.
     const wider = { ...viewAlong(turned(70)), key: 'wider' };
     const before = batch.counts;
     batch.updateLod([0, 0, 0], distances, null, wider);
     assert.notEqual(batch.counts, before);
+});
+
+test('a shape without impostor draws its coarse mesh where the deviation projects under the budget', () => {
+    // 1 x 2 m terminals, depth 0.1 m: a deviation of (0.1, 0.05, 1) reaches
+    // |(0.1, 0.1, 0.1)| = 0.1732 m, so from 17.32 m at 100 m per metre.
+    const coarseGeometry = new THREE.BoxGeometry();
+    const coarseLibrary = {
+        grammar: { index: 0 },
+        shapes: [],
+        shape: () => ({ geometry: new THREE.BoxGeometry(), coarse: { geometry: coarseGeometry, deviation: [0.1, 0.05, 1.0], triangles: 12 } }),
+    };
+    const batch = new TerminalBatch(setOf([[0, 10, 0], [0, 30, 0], [0, 16, 0]]), coarseLibrary, material, null);
+    const perMetre = { lod3: 0, lod2: 0, coarse: 100 };
+    batch.updateLod([0, 0, 0], perMetre);
+    const run = batch.runs[0];
+    assert.equal(run.coarse.geometry, coarseGeometry);
+    assert.deepEqual(batch.counts, { 4: 3, 3: 0, 2: 0, culled: 0, coarse: 1 }, 'LOD4 counts the coarse mesh\'s terminals too');
+    assert.deepEqual(lod4Records(batch), [0, 2]);
+    assert.equal(run.coarse.count, 1);
+    assert.equal(batch.recordOf(run.coarse, 0), 1, 'a picked coarse instance names its record');
+    // The instance is the record's matrix: its corner at (0, 30, 0).
+    assert.deepEqual(Array.from(run.coarse.instanceMatrix.array.subarray(12, 15)), [0, 30, 0]);
+    // A smaller error budget (fewer metres per metre of deviation) brings them all back.
+    batch.updateLod([0, 0, 0], { ...perMetre, coarse: 10 });
+    assert.equal(run.coarse.count, 3);
+    assert.equal(run.lod4.count, 0);
+    // A shape with an impostor never falls back on a coarse mesh, as in the native pass.
+    const withImpostor = new TerminalBatch(setOf([[0, 30, 0]]), coarseLibrary, material, impostors);
+    assert.equal(withImpostor.runs[0].coarse, null);
 });

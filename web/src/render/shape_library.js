@@ -5,6 +5,9 @@
 // COLOR_0 in unit space; node transforms applied, primitives merged); without it, or when a
 // shape's mesh fails to load, the shape gets a stand-in: its scope's front face at full
 // protrusion, coloured by what its name says it is. `status` says which, for the stats panel.
+// A shape with a served `coarse_mesh` (a tree part) also gets that mesh's geometry as
+// `coarse` ({geometry, deviation, triangles}), drawn where lod_policy.coarseMeshReach allows; it
+// stays null without meshes or when that glTF fails to load (the shape's mesh is drawn then).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { mergeGeometries } from 'three/addons/utils/BufferGeometryUtils.js';
@@ -69,7 +72,8 @@ export function mergeGltfScene(root) {
 }
 
 export class ShapeLibrary {
-    constructor(grammar, { meshes }) {
+    // `coarse`: false leaves coarse meshes out (every terminal draws its shape's mesh).
+    constructor(grammar, { meshes, coarse = true }) {
         this.grammar = grammar;
         this.shapes = (grammar.shapes ?? []).map((s, i) => {
             const nominal = s.nominal_size ?? [s.width ?? 1, s.height ?? 1, s.depth ?? 0];
@@ -78,6 +82,8 @@ export class ShapeLibrary {
                 name: s.name,
                 nominal,
                 meshUrl: s.mesh_url ?? null,
+                coarseMesh: coarse ? (s.coarse_mesh ?? null) : null,
+                coarse: null,
                 impostor: s.impostor ?? null,
                 geometry: standInGeometry(s.name, !(nominal[2] > 0)),
                 source: 'stand-in',
@@ -92,14 +98,16 @@ export class ShapeLibrary {
 
     async loadMeshes() {
         const loader = new GLTFLoader();
+        const load = async (url) => mergeGltfScene((await loader.loadAsync(url)).scene);
         await Promise.all(
             this.shapes.map(async (shape) => {
                 if (!shape.meshUrl) return;
                 try {
-                    const gltf = await loader.loadAsync(shape.meshUrl);
-                    shape.geometry = mergeGltfScene(gltf.scene);
+                    shape.geometry = await load(shape.meshUrl);
                     shape.source = 'glTF';
                     ++this.loaded;
+                    const c = shape.coarseMesh;
+                    if (c) shape.coarse = { geometry: await load(c.url), deviation: c.deviation, triangles: c.triangles };
                 } catch (e) {
                     this.failed.push(`${shape.name}: ${e.message ?? e}`);
                 }

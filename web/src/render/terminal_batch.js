@@ -7,11 +7,13 @@
 // moved or turned enough for the decision to change, leaving out those behind their wall or
 // outside the view (a CPU stand-in for the native renderer's GPU pass);
 // without them every terminal is LOD4 and the lists never change, unless a tree batch's cut
-// moves trees between terminals and billboards.
+// moves trees between terminals and billboards, or a shape has a coarse mesh (a tree part):
+// its LOD4 terminals are then sorted between the shape's mesh and the coarse one by
+// lod_policy.coarseMeshReach, as the native pass does.
 import * as THREE from 'three';
 
 import { halfToFloat, quaternionAxes, snorm16ToFloat } from '../payload/record.js';
-import { classifyTerminal, movedEnough, moveTolerance, turnedEnough } from '../stream/lod_policy.js';
+import { COARSE, classifyTerminal, coarseMeshReach, movedEnough, moveTolerance, turnedEnough } from '../stream/lod_policy.js';
 
 const FLAT_DEPTH = 1e-3;
 
@@ -57,14 +59,16 @@ export class TerminalBatch {
             if (count > 0) this.runs.push(this.makeRun(s, first, count, library, material, impostors));
             first += count;
         }
-        this.counts = { 4: n, 3: 0, 2: 0, culled: 0 };
+        this.counts = { 4: n, 3: 0, 2: 0, culled: 0, coarse: 0 };
         this.lastCamera = null;
         this.lastForward = null;
         this.lastViewKey = null;
-        this.sorted = treeCut || this.runs.some((r) => r.lod3);
-        if (treeCut) for (const run of this.runs) run.records ??= new Uint32Array(run.count);
+        this.lastPerMetre = -1;
+        this.sorted = treeCut || this.runs.some((r) => r.lod3 || r.coarse);
+        if (this.sorted) for (const run of this.runs) run.records ??= new Uint32Array(run.count);
         this.lastCut = -1;
         this.baseBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
+        for (const run of this.runs) if (run.coarse) this.baseBytes += run.coarse.instanceMatrix.array.byteLength + run.reach.byteLength;
         // Without impostors or a tree cut the lists never change: the instance buffers hold all there is.
         if (!this.sorted) this.matrices = this.frames = this.sizes = null;
     }
@@ -79,7 +83,7 @@ export class TerminalBatch {
         lod4.userData.records = null; // instance i is record first + i until re-sorted
         lod4.userData.first = first;
         this.group.add(lod4);
-        const run = { shape, first, count, lod4, lod3: null, lod2: null };
+        const run = { shape, first, count, lod4, lod3: null, lod2: null, coarse: null };
         const atlas = impostors?.atlasOf(library.grammar.index, shape);
         if (atlas) {
             run.lod3 = impostors.makeMesh(atlas, 3, count);
@@ -87,6 +91,20 @@ export class TerminalBatch {
             run.lod3.count = run.lod2.count = 0;
             for (const mesh of [run.lod3, run.lod2]) this.group.add(mesh);
             run.records = new Uint32Array(count); // record of each LOD4 instance
+        } else if (info?.coarse) {
+            // As in the native pass, only a shape without impostor falls back on a coarse mesh.
+            run.coarse = new THREE.InstancedMesh(info.coarse.geometry, material, count);
+            run.coarse.count = 0;
+            run.coarse.frustumCulled = false;
+            run.coarse.userData.batch = this;
+            run.coarse.userData.records = new Uint32Array(count); // record of each coarse instance
+            this.group.add(run.coarse);
+            // Each terminal's coarseMeshReach per metre of deviation scale: its scope is fixed.
+            run.reach = new Float32Array(count);
+            for (let i = 0; i < count; ++i) {
+                const r = first + i;
+                run.reach[i] = coarseMeshReach(info.coarse.deviation, this.sizes[2 * r], this.sizes[2 * r + 1], this.frames[13 * r + 12], 1);
+            }
         }
         return run;
     }
@@ -98,20 +116,23 @@ export class TerminalBatch {
         if (!this.sorted) return;
         const cutVersion = cut ? cut.version : -1;
         const viewKey = view ? view.key : null;
-        if (cutVersion === this.lastCut && viewKey === this.lastViewKey &&
+        const perMetre = distances.coarse ?? 0;
+        if (cutVersion === this.lastCut && viewKey === this.lastViewKey && perMetre === this.lastPerMetre &&
             !movedEnough(this.lastCamera, camera, distances.lod3) && !(view && turnedEnough(this.lastForward, view.forward)))
             return;
         this.lastCamera = camera.slice();
         this.lastCut = cutVersion;
+        this.lastPerMetre = perMetre;
         this.lastViewKey = viewKey;
         this.lastForward = view ? view.forward.slice() : null;
         // How far the camera may move before the lists are sorted again.
         const slack = moveTolerance(distances.lod3);
-        const counts = { 4: 0, 3: 0, 2: 0, culled: 0 };
+        const counts = { 4: 0, 3: 0, 2: 0, culled: 0, coarse: 0 };
         const corner = [0, 0, 0], axes = new Float64Array(9);
         for (const run of this.runs) {
-            const lists = { 4: run.lod4, 3: run.lod3, 2: run.lod2 };
-            const filled = { 4: 0, 3: 0, 2: 0 };
+            const lists = { 4: run.lod4, 3: run.lod3, 2: run.lod2, [COARSE]: run.coarse };
+            const records = { 4: run.records, [COARSE]: run.coarse?.userData.records };
+            const filled = { 4: 0, 3: 0, 2: 0, [COARSE]: 0 };
             for (let i = run.first; i < run.first + run.count; ++i) {
                 if (cut && cut.isBillboard(this.set.records[8 * i + 3])) continue;
                 const f = this.frames, k = 13 * i;
@@ -119,18 +140,20 @@ export class TerminalBatch {
                 corner[1] = f[k + 1] - camera[1];
                 corner[2] = f[k + 2] - camera[2];
                 for (let j = 0; j < 9; ++j) axes[j] = f[k + 3 + j];
-                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3, view, slack);
+                const reach = run.coarse ? run.reach[i - run.first] * perMetre : Infinity;
+                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3, view, slack, reach);
                 if (lod === 0) {
                     ++counts.culled;
                     continue;
                 }
                 const mesh = lists[lod];
                 mesh.instanceMatrix.array.set(this.matrices.subarray(16 * i, 16 * i + 16), 16 * filled[lod]);
-                if (lod === 4 && run.records) run.records[filled[4]] = i;
+                if (records[lod]) records[lod][filled[lod]] = i;
                 ++filled[lod];
-                ++counts[lod];
+                ++counts[lod === COARSE ? 4 : lod];
+                if (lod === COARSE) ++counts.coarse;
             }
-            for (const lod of [4, 3, 2]) {
+            for (const lod of [4, 3, 2, COARSE]) {
                 if (!lists[lod]) continue; // a shape without impostor has no LOD3 and LOD2 lists
                 lists[lod].count = filled[lod];
                 lists[lod].instanceMatrix.needsUpdate = true;
@@ -155,6 +178,6 @@ export class TerminalBatch {
     }
 
     dispose() {
-        for (const run of this.runs) for (const mesh of [run.lod4, run.lod3, run.lod2]) mesh?.dispose();
+        for (const run of this.runs) for (const mesh of [run.lod4, run.lod3, run.lod2, run.coarse]) mesh?.dispose();
     }
 }

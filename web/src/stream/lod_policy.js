@@ -9,7 +9,10 @@
 // - per terminal, by the distance to its scope centre: LOD4, LOD3 from the distance at which
 //   geometric_error[3] stays under max_sse, LOD2 from geometric_error[2]'s; a terminal whose
 //   camera is behind the plane its shape recedes to is culled (backface), and without
-//   impostors every visible terminal is LOD4.
+//   impostors every visible terminal is LOD4;
+// - per LOD4 terminal of a shape with a coarse mesh (a tree part), that mesh once the two
+//   meshes' deviation, scaled by the terminal's scope, projects under max_sse from its scope
+//   centre (meshShape in cull_shared.h).
 export const EXTRUDED = 'extruded';
 export const TERMINALS = 'terminals';
 
@@ -48,11 +51,21 @@ export function decideCell(previous, bounds, camera, profile) {
 }
 
 // The per-terminal distances for this camera: {lod3, lod2} in metres.
+// `coarse`: the distance per metre of mesh deviation from which a coarse mesh stays under the
+// budget (coarseMeshReach).
 export function terminalLodDistances(profile, camera) {
     return {
         lod3: lodDistance(profile.geometric_error[3], profile, camera.fovY, camera.viewportHeight),
         lod2: lodDistance(profile.geometric_error[2], profile, camera.fovY, camera.viewportHeight),
+        coarse: lodDistance(1, profile, camera.fovY, camera.viewportHeight),
     };
+}
+
+// The distance from a terminal's scope centre beyond which its shape's coarse mesh stays under
+// the budget: the meshes' `deviation` (per unit-scope axis, from the scene's coarse_mesh)
+// scaled by the scope (w, h, d), times `perMetre` (terminalLodDistances' `coarse`).
+export function coarseMeshReach(deviation, w, h, d, perMetre) {
+    return Math.hypot(deviation[0] * w, deviation[1] * h, deviation[2] * d) * perMetre;
 }
 
 // Whether a camera at `camera` has moved far enough from `last` (the position a distance
@@ -93,10 +106,15 @@ export function outsideView(view, cx, cy, cz, radius) {
 }
 
 // 0 (culled), 2, 3 or 4 for a terminal whose scope corner is at `corner` relative to the camera,
-// with scope axes X, Y, Z (from quaternionAxes: nine numbers), size (w, h) and depth d. With a
-// `view`, a terminal outside it is culled too; `slack` (metres) widens that test by how far the
-// camera may move before the decision is made again.
-export function classifyTerminal(corner, axes, w, h, d, distances, impostors, view = null, slack = 0) {
+// with scope axes X, Y, Z (from quaternionAxes: nine numbers), size (w, h) and depth d, or
+// COARSE (a LOD4 terminal drawn with its shape's coarse mesh) when `coarseReach` (metres,
+// coarseMeshReach; Infinity: the shape has none) is no farther than its scope centre. With a
+// `view`, a terminal outside it is culled too; `slack` (metres) is how far the camera may move
+// before the decision is made again: it widens the view test and narrows the coarse mesh's
+// range, so neither decision is wrong until then.
+export const COARSE = 'coarse';
+
+export function classifyTerminal(corner, axes, w, h, d, distances, impostors, view = null, slack = 0, coarseReach = Infinity) {
     const cx = corner[0] + axes[0] * 0.5 * w + axes[3] * 0.5 * h;
     const cy = corner[1] + axes[1] * 0.5 * w + axes[4] * 0.5 * h;
     const cz = corner[2] + axes[2] * 0.5 * w + axes[5] * 0.5 * h;
@@ -105,7 +123,7 @@ export function classifyTerminal(corner, axes, w, h, d, distances, impostors, vi
     // The scope box's half diagonal, doubled: a mesh may reach past its scope (a balcony's
     // depth ratio is above 1), and an impostor quad covers the mesh's bounds.
     if (view && outsideView(view, cx, cy, cz, Math.hypot(w, h, d) + slack)) return 0;
-    if (!impostors) return 4;
     const distance = Math.sqrt(cx * cx + cy * cy + cz * cz);
+    if (!impostors) return distance - slack >= coarseReach ? COARSE : 4;
     return distance >= distances.lod2 ? 2 : distance >= distances.lod3 ? 3 : 4;
 }

@@ -41,7 +41,7 @@ export class Streamer {
             onFailed: (request, error) => onError(`${request.url}: ${error.message ?? error}`),
             onStale: () => onStale(),
         });
-        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 }, decodeMs: 0 };
+        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 }, decodeMs: 0 };
         this.frustum = new THREE.Frustum();
         this.box = new THREE.Box3();
     }
@@ -162,7 +162,7 @@ export class Streamer {
         const treeDistance = treeError > 0 ? lodDistance(treeError, this.profile, view.fovY, view.viewportHeight) : Infinity;
         const requests = [];
         const pinned = new Set();
-        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 } };
+        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 } };
         const p = view.position;
         for (const cell of this.cells) {
             const decision = decideCell(this.lodOf.get(cell.id), cell.bounds, view, this.profile);
@@ -243,7 +243,7 @@ export class Streamer {
         value.terminals.updateLod(frame.local, frame.distances, cut, frame.view);
         // Impostor quads grow with what they draw.
         if (value.terminals.gpuBytes !== bytes) this.cache.grow(term, value.terminals.gpuBytes - bytes);
-        if (frame.visible) for (const lod of [4, 3, 2]) frame.stats.terminals[lod] += value.terminals.counts[lod];
+        if (frame.visible) for (const lod of [4, 3, 2, 'coarse']) frame.stats.terminals[lod] += value.terminals.counts[lod];
         frame.pinned.add(term);
         b.drawn = { url: term, version: value.version, kind: 'terminal' };
     }
