@@ -6,7 +6,8 @@
 // their coarse meshes, with fewer triangles and an image close to the full meshes' (?coarse=0);
 // by distance (the default) the cut must split the park's batches from nearer and make every
 // tree a billboard from farther; and after the trees are edited, the service bakes species for
-// their new values and the far trees are billboards of those, changing the image. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
+// their new values and the far trees are billboards of those, changing the image; and at eye
+// level in a small viewport the ground is drawn. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import os from 'node:os';
@@ -163,6 +164,43 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         const changed = (await compare(page, { none: auto.image, terminals: editedImage, billboards: editedImage })).terminalPixels;
         assert.ok(changed > 50, `the edited trees' billboards change ${changed} pixels`);
         await page.screenshot({ path: path.join(artifacts, 'trees-edited.png'), timeout: 60000 });
+
+        // The ground at eye level, level, in a small viewport: SwiftShader clipped a ground of
+        // large triangles so that there it hid the bottoms of the houses and trees, or came out
+        // fully fogged (the sky's colour). Rendered with and without it, no pixel of anything
+        // else may change beyond a few at the houses' bases, and below the horizon no pixel
+        // may stay the sky's colour.
+        await page.setViewportSize({ width: 640, height: 360 });
+        await view('none', '0,-200,1.7,90,0', '&mode=walk&aa=0');
+        const ground = await page.evaluate(() => {
+            const w = window.hexlod.world, gl = w.renderer.getContext();
+            const W = gl.drawingBufferWidth, H = gl.drawingBufferHeight;
+            const grab = () => {
+                w.renderer.render(w.scene, w.camera);
+                const pixels = new Uint8Array(4 * W * H);
+                gl.readPixels(0, 0, W, H, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+                return pixels;
+            };
+            const s = w.scene.background.clone().convertLinearToSRGB();
+            const sky = [s.r, s.g, s.b].map((c) => Math.round(255 * c));
+            const far = (a, i, b) => Math.abs(a[i] - b[0]) + Math.abs(a[i + 1] - b[1]) + Math.abs(a[i + 2] - b[2]);
+            w.ground.visible = false;
+            const bare = grab();
+            w.ground.visible = true;
+            const full = grab();
+            let objects = 0, hidden = 0, skyBelow = 0;
+            for (let i = 0; i < W * H; ++i) {
+                const o = 4 * i;
+                if (far(bare, o, sky) > 6) {
+                    ++objects;
+                    if (far(full, o, [bare[o], bare[o + 1], bare[o + 2]]) > 30) ++hidden;
+                } else if (i < W * (H / 2 - 2) && far(full, o, sky) <= 6) ++skyBelow; // rows from the bottom
+            }
+            return { objects, hidden, skyBelow };
+        });
+        assert.ok(ground.objects > 1000, `the view shows ${ground.objects} pixels of houses and trees`);
+        assert.ok(ground.hidden <= ground.objects / 1000, `the ground hides ${ground.hidden} of ${ground.objects} pixels of houses and trees`);
+        assert.equal(ground.skyBelow, 0, 'pixels below the horizon left the sky\'s colour');
         assert.deepEqual(pageErrors, []);
         console.log(
             `web.browser trees: billboards cover ${coverage.toFixed(2)} of the terminals' ${c.terminalPixels} pixels (overlap ${c.overlap.toFixed(2)}), ` +
@@ -170,7 +208,8 @@ test('far trees are billboards that stand for their trees, and edited trees get 
                 `coarse meshes for ${treeParts.coarse} of ${treeParts[4]} LOD4 terminals: ${terminals.state.triangles} triangles against ${full.state.triangles}, ` +
                 `${coarseError.psnrBillboards.toFixed(2)} dB against full meshes; ` +
                 `first view ${terminals.state.loadTime?.toFixed(2)} s with terminals, ${billboards.state.loadTime?.toFixed(2)} s with billboards; ` +
-                `after the edit, ${added.length} species baked and every tree a billboard again in ${rebillboarded.toFixed(2)} s, ${changed} pixels changed`,
+                `after the edit, ${added.length} species baked and every tree a billboard again in ${rebillboarded.toFixed(2)} s, ${changed} pixels changed; ` +
+                `at eye level the ground hides ${ground.hidden} of ${ground.objects} pixels of houses and trees`,
         );
     } finally {
         await browser?.close();

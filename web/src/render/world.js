@@ -5,6 +5,8 @@
 // origin the city lies. Coordinates are z-up metres.
 import * as THREE from 'three';
 
+import { Ground } from './ground.js';
+
 export class World {
     constructor(canvas, { antialias = true } = {}) {
         this.renderer = new THREE.WebGLRenderer({ canvas, antialias, preserveDrawingBuffer: true });
@@ -28,11 +30,8 @@ export class World {
             sunColour: sun.color.clone().multiplyScalar(sun.intensity / Math.PI),
             ambientColour: sky.color.clone().lerp(sky.groundColor, 0.5).multiplyScalar(sky.intensity / Math.PI),
         };
-        this.ground = new THREE.Mesh(
-            new THREE.PlaneGeometry(40000, 40000),
-            new THREE.MeshLambertMaterial({ color: new THREE.Color(0.3, 0.32, 0.28) }),
-        );
-        this.ground.name = 'ground';
+        this.groundPlane = new Ground(new THREE.Color(0.3, 0.32, 0.28), this.lighting);
+        this.ground = this.groundPlane.mesh; // what picking hits
         this.scene.add(this.ground);
         this.groundZ = 0;
         this.cells = new Map(); // "q,r" -> {group, origin}
@@ -70,8 +69,7 @@ export class World {
         this.camera.lookAt(view.forward[0], view.forward[1], view.forward[2]);
         for (const { group, origin } of this.cells.values())
             group.position.set(origin[0] - cx, origin[1] - cy, origin[2] - cz);
-        // The ground follows the camera sideways, so its float positions stay small too.
-        this.ground.position.set(0, 0, this.groundZ - cz - 0.02);
+        this.groundPlane.height = this.groundZ - cz - 0.02;
         this.camera.updateMatrixWorld();
     }
 
