@@ -104,6 +104,20 @@ protected:
         delete scenePath;
         delete folder;
     }
+    // GET `url` as a .glb and parse it.
+    static ::testing::AssertionResult fetchGlb(const std::string& url, tinygltf::Model& model) {
+        const auto reply = connection->get(url);
+        if (reply.status != 200) return ::testing::AssertionFailure() << url << ": " << reply.status;
+        if (reply.header("content-type") != "model/gltf-binary")
+            return ::testing::AssertionFailure() << url << ": " << reply.header("content-type");
+        tinygltf::TinyGLTF loader;
+        std::string err, warn;
+        if (!loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                         reinterpret_cast<const unsigned char*>(reply.body.data()),
+                                         unsigned(reply.body.size())))
+            return ::testing::AssertionFailure() << url << ": " << err;
+        return ::testing::AssertionSuccess();
+    }
     static const grammar::CompiledGrammar& grammarAt(size_t g) {
         const size_t buildings = built->buildingGrammars.size();
         return g < buildings ? built->buildingGrammars[g].grammar
@@ -225,16 +239,8 @@ TEST_F(ServeAssets, EveryShapeMeshDecodesToTheLibraryMesh) {
     for (size_t g = 0; g < grammars.size(); ++g) {
         for (size_t s = 0; s < library.shapeCount(uint32_t(g)); ++s) {
             const Json& shape = (*summary)["grammars"][g]["shapes"][s];
-            const auto reply = connection->get(shape["mesh_url"]);
-            ASSERT_EQ(reply.status, 200) << shape["mesh_url"];
-            EXPECT_EQ(reply.header("content-type"), "model/gltf-binary");
             tinygltf::Model model;
-            tinygltf::TinyGLTF loader;
-            std::string err, warn;
-            ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                                    reinterpret_cast<const unsigned char*>(reply.body.data()),
-                                                    unsigned(reply.body.size())))
-                << err;
+            ASSERT_TRUE(fetchGlb(shape["mesh_url"], model));
             const render::TerminalMesh& mesh = library.mesh(uint32_t(g), uint16_t(s));
             ASSERT_EQ(model.meshes.size(), 1u);
             const tinygltf::Accessor& positions =
@@ -267,15 +273,8 @@ TEST_F(ServeAssets, TreePartsCarryTheirCoarseMesh) {
             const glm::vec3 deviation = render::meshDeviation(fine, *coarse);
             for (int a = 0; a < 3; ++a)
                 EXPECT_EQ(shape["coarse_mesh"]["deviation"][a].get<float>(), deviation[a]) << shape["name"];
-            const auto reply = connection->get(shape["coarse_mesh"]["url"]);
-            ASSERT_EQ(reply.status, 200) << shape["coarse_mesh"]["url"];
             tinygltf::Model model;
-            tinygltf::TinyGLTF loader;
-            std::string err, warn;
-            ASSERT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                                    reinterpret_cast<const unsigned char*>(reply.body.data()),
-                                                    unsigned(reply.body.size())))
-                << err;
+            ASSERT_TRUE(fetchGlb(shape["coarse_mesh"]["url"], model));
             const tinygltf::Accessor& indices =
                 model.accessors.at(size_t(model.meshes.at(0).primitives.at(0).indices));
             EXPECT_EQ(indices.count, 3 * coarse->triangleCount()) << shape["name"];

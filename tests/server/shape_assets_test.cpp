@@ -73,6 +73,18 @@ protected:
         delete live;
         live = nullptr;
     }
+    // `url` answers `body` as an immutable .glb under `etag`, and a conditional GET 304.
+    static void expectImmutableGlb(const std::string& url, const std::string& etag, const std::string& body) {
+        const auto reply = live->get(url);
+        ASSERT_EQ(reply.status, 200) << reply.body;
+        EXPECT_EQ(reply.body, body);
+        EXPECT_EQ(reply.header("content-type"), "model/gltf-binary");
+        EXPECT_EQ(reply.header("etag"), etag);
+        EXPECT_EQ(reply.header("cache-control"), "public, max-age=31536000, immutable");
+        const auto again = live->get(url, {{"If-None-Match", etag}});
+        EXPECT_EQ(again.status, 304);
+        EXPECT_TRUE(again.body.empty());
+    }
     static LiveServer* live;
 };
 LiveServer* ShapeAssetRoutes::live = nullptr;
@@ -112,36 +124,12 @@ TEST_F(ShapeAssetRoutes, TheSummaryListsEachShapesMeshAndImpostor) {
 }
 
 TEST_F(ShapeAssetRoutes, MeshesAreImmutableAndRevalidate) {
-    const auto mesh = live->get("/api/v1/meshes/0/1/000000000000abcd.glb");
-    ASSERT_EQ(mesh.status, 200) << mesh.body;
-    EXPECT_EQ(mesh.body, "glTF mesh 1");
-    EXPECT_EQ(mesh.header("content-type"), "model/gltf-binary");
-    EXPECT_EQ(mesh.header("etag"), "\"000000000000abcd\"");
-    EXPECT_EQ(mesh.header("cache-control"), "public, max-age=31536000, immutable");
-    const auto again =
-        live->get("/api/v1/meshes/0/1/000000000000abcd.glb", {{"If-None-Match", mesh.header("etag")}});
-    EXPECT_EQ(again.status, 304);
-    EXPECT_TRUE(again.body.empty());
+    expectImmutableGlb("/api/v1/meshes/0/1/000000000000abcd.glb", "\"000000000000abcd\"", "glTF mesh 1");
 }
 
 TEST_F(ShapeAssetRoutes, CoarseMeshesAreServedBesideTheirShapesMesh) {
-    const auto coarse = live->get("/api/v1/meshes/0/1/000000000000abce.coarse.glb");
-    ASSERT_EQ(coarse.status, 200) << coarse.body;
-    EXPECT_EQ(coarse.body, "coarse glTF mesh 1");
-    EXPECT_EQ(coarse.header("content-type"), "model/gltf-binary");
-    EXPECT_EQ(coarse.header("etag"), "\"000000000000abce\"");
-    EXPECT_EQ(coarse.header("cache-control"), "public, max-age=31536000, immutable");
-    EXPECT_EQ(live->get("/api/v1/meshes/0/1/000000000000abce.coarse.glb",
-                        {{"If-None-Match", coarse.header("etag")}})
-                  .status,
-              304);
-    // Each key belongs to one of the two meshes: the other's is stale, and names the right URL.
-    const auto fineKey = live->get("/api/v1/meshes/0/1/000000000000abcd.coarse.glb");
-    EXPECT_EQ(fineKey.status, 404);
-    EXPECT_EQ(fineKey.header("x-hexlod-current"), "/api/v1/meshes/0/1/000000000000abce.coarse.glb");
-    const auto coarseKey = live->get("/api/v1/meshes/0/1/000000000000abce.glb");
-    EXPECT_EQ(coarseKey.status, 404);
-    EXPECT_EQ(coarseKey.header("x-hexlod-current"), "/api/v1/meshes/0/1/000000000000abcd.glb");
+    expectImmutableGlb("/api/v1/meshes/0/1/000000000000abce.coarse.glb", "\"000000000000abce\"",
+                       "coarse glTF mesh 1");
 }
 
 TEST_F(ShapeAssetRoutes, ImpostorFilesByKindWithTheirTypes) {
@@ -160,12 +148,17 @@ TEST_F(ShapeAssetRoutes, ImpostorFilesByKindWithTheirTypes) {
 }
 
 TEST_F(ShapeAssetRoutes, AStaleKeyNamesTheCurrentUrl) {
-    const auto mesh = live->get("/api/v1/meshes/0/0/0000000000000001.glb");
-    EXPECT_EQ(mesh.status, 404);
-    EXPECT_EQ(mesh.header("x-hexlod-current"), "/api/v1/meshes/0/0/0000000000001234.glb");
-    const auto impostor = live->get("/api/v1/impostors/0/0/0000000000000001.normal.png");
-    EXPECT_EQ(impostor.status, 404);
-    EXPECT_EQ(impostor.header("x-hexlod-current"), "/api/v1/impostors/0/0/000000000000feed.normal.png");
+    const auto stale = [](const std::string& url, const std::string& current) {
+        const auto reply = live->get(url);
+        EXPECT_EQ(reply.status, 404) << url;
+        EXPECT_EQ(reply.header("x-hexlod-current"), current) << url;
+    };
+    stale("/api/v1/meshes/0/0/0000000000000001.glb", "/api/v1/meshes/0/0/0000000000001234.glb");
+    stale("/api/v1/impostors/0/0/0000000000000001.normal.png",
+          "/api/v1/impostors/0/0/000000000000feed.normal.png");
+    // A shape's two meshes have a key each: the other one's is stale.
+    stale("/api/v1/meshes/0/1/000000000000abcd.coarse.glb", "/api/v1/meshes/0/1/000000000000abce.coarse.glb");
+    stale("/api/v1/meshes/0/1/000000000000abce.glb", "/api/v1/meshes/0/1/000000000000abcd.glb");
 }
 
 TEST_F(ShapeAssetRoutes, TreeSpeciesAreListedWithTheirExactValuesAndServed) {
