@@ -30,8 +30,10 @@ void main() {
     // The ray's world z: viewMatrix turns world directions into view ones, so its third column
     // is the world's up in view space.
     float rayZ = dot(viewMatrix[2].xyz, vViewRay);
-    if (rayZ >= 0.0) discard;
     float depth = height / rayZ; // view depth of the hit: the ray has view depth 1 per unit
+    // Only rays going down from above it meet it (from under it the plane shows nothing, as a
+    // plane's back face culled).
+    if (rayZ >= 0.0 || depth <= 0.0) discard;
     vec4 clip = projectionMatrix * vec4(vViewRay * depth, 1.0);
     if (clip.z > clip.w) discard; // beyond the far plane
     gl_FragDepth = 0.5 * clip.z / clip.w + 0.5;
