@@ -2,7 +2,8 @@
 // esbuild and loaded into a page. LOD2 must show exactly the central view (5: red 80, green 175
 // in sRGB) on the rectangle of the mesh's bounds on the wall plane, and nothing beyond it; LOD3
 // from straight in front must blend the four views around the front direction (5, 6, 9, 10,
-// equal weights: red near their mean, 120); both must cover the quad's middle.
+// equal weights: red near their mean, 120); both must cover the quad's middle. Lit by the
+// viewer's lights, LOD2 must shade as a Lambert mesh of its albedo facing the same way.
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import test from 'node:test';
@@ -33,6 +34,13 @@ test('LOD2 and LOD3 impostor shaders compile and sample the right views', { time
         assert.ok(Math.abs(r2 - 80) <= 2 && Math.abs(g2 - 175) <= 2, `LOD2 centre ${results[2].centre}`);
         const [r3] = results[3].centre;
         assert.ok(r3 > 100 && r3 < 140, `LOD3 centre ${results[3].centre}`);
+        // Under the viewer's lights an impostor shades as its mesh does, whichever way it faces.
+        for (const [facing, { impostor, mesh }] of Object.entries(results.lighting)) {
+            const apart = Math.max(...impostor.map((c, i) => Math.abs(c - mesh[i])));
+            assert.ok(apart <= 2, `facing ${facing}: impostor ${impostor}, mesh ${mesh}`);
+        }
+        const { north, south } = results.lighting;
+        assert.ok(south.mesh[0] > north.mesh[0], `the sun lights the south facade (${south.mesh}) over the north (${north.mesh})`);
     } finally {
         await browser.close();
     }

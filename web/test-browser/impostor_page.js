@@ -5,6 +5,7 @@
 import * as THREE from 'three';
 
 import { ImpostorSet } from '../src/render/impostors.js';
+import { makeLights } from '../src/render/lights.js';
 
 const grid = 4, resolution = 16, padding = 1, size = grid * resolution;
 const layout = { sphere: 'hemi-octahedral', grid, view_resolution: resolution, padding, central_view: 5 };
@@ -27,7 +28,9 @@ const canvas = document.createElement('canvas');
 canvas.width = canvas.height = 128;
 document.body.append(canvas);
 const renderer = new THREE.WebGLRenderer({ canvas, preserveDrawingBuffer: true });
-const lighting = { sunDirection: new THREE.Vector3(0, -1, 1).normalize(), sunColour: new THREE.Color(0, 0, 0), ambientColour: new THREE.Color(1, 1, 1) };
+// Unlit: a white sky and ground and no sun, so that a pixel shows its view's albedo.
+const white = new THREE.Color(1, 1, 1);
+const lighting = { sunDirection: new THREE.Vector3(0, -1, 1).normalize(), sunColour: new THREE.Color(0, 0, 0), skyColour: white, groundColour: white };
 const impostors = new ImpostorSet({ capabilities: { impostors: true }, impostor_layout: layout, grammars: [] }, lighting);
 const atlas = {
     albedo: texture(albedoTexels, THREE.SRGBColorSpace),
@@ -63,4 +66,43 @@ for (const lod of [2, 3]) {
 const corner = (x, z) => new THREE.Vector3(x, 0, z).project(camera).multiplyScalar(64);
 const [low, high] = [corner(0, 0), corner(1, 2)];
 results.wallRectangle = (high.x - low.x) * (high.y - low.y);
+
+// Lit by the viewer's lights, LOD2 against a MeshLambertMaterial rectangle of the central view's
+// albedo in its place, facing each way: the centre pixels must match, as an impostor and its
+// mesh must across the LOD switch. Terminal axes X (1 m), Y (2 m) and Z, the facade normal.
+const lit = makeLights();
+const litImpostors = new ImpostorSet({ capabilities: { impostors: true }, impostor_layout: layout, grammars: [] }, lit.lighting);
+const litAtlas = { ...atlas, materials: {} };
+const albedo = new THREE.Color().setRGB(80 / 255, 175 / 255, 128 / 255, THREE.SRGBColorSpace); // view 5
+const v = (x, y, z) => new THREE.Vector3(x, y, z);
+const facings = {
+    south: [v(1, 0, 0), v(0, 0, 1), v(0, -1, 0)],
+    north: [v(-1, 0, 0), v(0, 0, 1), v(0, 1, 0)],
+    east: [v(0, 1, 0), v(0, 0, 1), v(1, 0, 0)],
+    up: [v(1, 0, 0), v(0, 1, 0), v(0, 0, 1)],
+};
+const centrePixel = (object, x, y, z) => {
+    const scene = new THREE.Scene();
+    scene.background = new THREE.Color(0, 0, 0);
+    scene.add(object, ...lit.lights.map((l) => l.clone()));
+    const centre = x.clone().multiplyScalar(0.5).add(y);
+    const view = new THREE.PerspectiveCamera(30, 1, 0.1, 100);
+    view.up.copy(y);
+    view.position.copy(centre).addScaledVector(z, 6);
+    view.lookAt(centre);
+    renderer.render(scene, view);
+    const gl = renderer.getContext();
+    const pixel = new Uint8Array(4);
+    gl.readPixels(64, 64, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+    return Array.from(pixel.subarray(0, 3));
+};
+results.lighting = {};
+for (const [name, [x, y, z]] of Object.entries(facings)) {
+    const impostor = litImpostors.makeMesh(litAtlas, 2, 1);
+    impostor.setMatrixAt(0, new THREE.Matrix4().makeBasis(x, y.clone().multiplyScalar(2), z.clone().multiplyScalar(0.2)));
+    const mesh = new THREE.Mesh(new THREE.PlaneGeometry(1, 2), new THREE.MeshLambertMaterial({ color: albedo }));
+    mesh.matrixAutoUpdate = false;
+    mesh.matrix.makeBasis(x, y, z).setPosition(x.clone().multiplyScalar(0.5).add(y));
+    results.lighting[name] = { impostor: centrePixel(impostor, x, y, z), mesh: centrePixel(mesh, x, y, z) };
+}
 window.impostorResult = { results, errors };

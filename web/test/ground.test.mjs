@@ -10,7 +10,8 @@ import { Ground } from '../src/render/ground.js';
 const lighting = {
     sunDirection: new THREE.Vector3(0, 0.6, 0.8),
     sunColour: new THREE.Color(1, 1, 1),
-    ambientColour: new THREE.Color(0.25, 0.25, 0.25),
+    skyColour: new THREE.Color(0.25, 0.25, 0.25),
+    groundColour: new THREE.Color(0.05, 0.05, 0.05),
 };
 
 function hits(ground, origin, direction, near = 0, far = Infinity) {
@@ -43,7 +44,7 @@ test('no hit above the horizon, from under the plane, or outside the raycaster\'
 
 test('it is lit as a Lambert surface facing up', () => {
     const ground = new Ground(new THREE.Color(0.5, 0.4, 0.2), lighting);
-    // albedo * (ambient + sun * cos), cos = 0.8
+    // albedo * (sky + sun * cos), cos = 0.8: facing up, the hemisphere light gives its sky colour
     const lit = ground.material.uniforms.litColour.value;
     assert.ok(Math.abs(lit.r - 0.5 * 1.05) < 1e-6 && Math.abs(lit.g - 0.4 * 1.05) < 1e-6 && Math.abs(lit.b - 0.2 * 1.05) < 1e-6);
 });

@@ -9,6 +9,8 @@
 // plane), fogged as three.js fogs by view depth; picking hits it as a plane too.
 import * as THREE from 'three';
 
+import { lambertLight, WORLD_UP } from './lights.js';
+
 const VERTEX = /* glsl */ `
 out vec3 vViewRay;
 void main() {
@@ -44,12 +46,10 @@ void main() {
 `;
 
 export class Ground {
-    // `albedo`: linear colour; `lighting`: World's lighting (the sun's direction and colour and
-    // the ambient term, as MeshLambertMaterial lights with the scene's lights), so the ground
-    // is lit as a Lambert surface facing up.
+    // `albedo`: linear colour; `lighting`: World's lighting (lights.js), so the ground is lit
+    // as a Lambert surface facing up.
     constructor(albedo, lighting) {
-        const cos = Math.max(lighting.sunDirection.z, 0);
-        const light = lighting.sunColour.clone().multiplyScalar(cos).add(lighting.ambientColour);
+        const light = lambertLight(lighting, WORLD_UP);
         this.material = new THREE.ShaderMaterial({
             vertexShader: VERTEX,
             fragmentShader: FRAGMENT,

@@ -9,11 +9,12 @@
 // grid views around the camera's direction in shape space by their bilinear weights, each
 // sampled where the quad's point lies in that view's frame (the reconstruction of
 // impostor_views.glsl without its depth iterations). Coverage under one half is discarded
-// (alpha test, no sorting); normals light it with the scene's sun.
+// (alpha test, no sorting); normals light it as the meshes are lit (lights.js).
 import * as THREE from 'three';
 
 import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
 import { IMPOSTOR_ATLAS_GLSL, IMPOSTOR_VIEWS_GLSL, VIEW_BLEND_GLSL } from './impostor_views.js';
+import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
 const VERTEX = /* glsl */ `
 uniform vec3 nominal;
@@ -26,6 +27,7 @@ flat out vec4 vViews;
 out vec4 vWeights;
 out vec2 vUv0, vUv1, vUv2, vUv3;
 out vec3 vSun;             // the sun in shape space
+out vec3 vUp;              // world up in shape space
 ${QUAD_MATRIX_GLSL}
 ${IMPOSTOR_VIEWS_GLSL}
 ${VIEW_BLEND_GLSL}
@@ -73,6 +75,7 @@ void main() {
     vUv2 = viewUv(vViews.z, q);
     vUv3 = viewUv(vViews.w, q);
     vSun = normalize(worldToShape * sunDirection);
+    vUp = normalize(worldToShape * vec3(0.0, 0.0, 1.0));
     gl_Position = projectionMatrix * viewMatrix * shapeToWorld * vec4(sphere.xyz + sphere.w * q, 1.0);
 }
 `;
@@ -81,13 +84,12 @@ const FRAGMENT = /* glsl */ `
 uniform sampler2D albedoAtlas;
 uniform sampler2D normalAtlas;
 uniform vec4 atlasLayout;
-uniform vec3 sunColour;
-uniform vec3 ambientColour;
 flat in vec4 vViews;
 in vec4 vWeights;
 in vec2 vUv0, vUv1, vUv2, vUv3;
-in vec3 vSun;
+in vec3 vSun, vUp;
 ${IMPOSTOR_ATLAS_GLSL}
+${LIGHTING_GLSL}
 void main() {
     vec4 colour, normalDepth;
     accumulateViews(albedoAtlas, normalAtlas, atlasLayout.xyz, vViews, vWeights, vUv0, vUv1, vUv2, vUv3, colour,
@@ -95,7 +97,7 @@ void main() {
     if (colour.a < 0.5) discard;
     vec3 albedo = colour.rgb / colour.a;
     vec3 n = length(normalDepth.xyz) > 0.0 ? normalize(normalDepth.xyz) : vec3(0.0, 0.0, 1.0);
-    gl_FragColor = vec4(albedo * (ambientColour + sunColour * max(dot(n, vSun), 0.0)), 1.0);
+    gl_FragColor = vec4(albedo * lambertLight(n, vSun, vUp), 1.0);
     #include <colorspace_fragment>
 }
 `;
@@ -176,8 +178,7 @@ export class ImpostorSet {
                 albedoAtlas: { value: atlas.albedo },
                 normalAtlas: { value: atlas.normal },
                 sunDirection: { value: this.lighting.sunDirection },
-                sunColour: { value: this.lighting.sunColour },
-                ambientColour: { value: this.lighting.ambientColour },
+                ...lightingUniforms(this.lighting),
             },
         });
         atlas.materials[lod] = material;

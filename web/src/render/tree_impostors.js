@@ -7,12 +7,13 @@
 // the views store, so a billboard sinks into the ground and behind buildings where the tree
 // does, not where its flat quad would. As in the native renderer, coverage becomes the sample
 // mask on a multisampled canvas (alpha to coverage) and is a cutout at one half otherwise; the
-// stored normals light it with the scene's sun.
+// stored normals light it as the meshes are lit (lights.js).
 import * as THREE from 'three';
 
 import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
 import { loadTexture } from './impostors.js';
 import { FULL_SPHERE, IMPOSTOR_ATLAS_GLSL, TREE_VIEWS_GLSL, VIEW_BLEND_GLSL } from './impostor_views.js';
+import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
 const VERTEX = /* glsl */ `
 uniform vec4 sphere;      // centre xyz, radius (tree space)
@@ -57,14 +58,13 @@ uniform sampler2D albedoAtlas;
 uniform sampler2D normalAtlas;
 uniform vec3 atlasLayout;
 uniform vec3 sunDirection;
-uniform vec3 sunColour;
-uniform vec3 ambientColour;
 uniform float cutout;
 flat in vec4 vViews;
 in vec4 vWeights;
 in vec2 vUv0, vUv1, vUv2, vUv3;
 in vec4 vClip, vClipForward;
 ${IMPOSTOR_ATLAS_GLSL}
+${LIGHTING_GLSL}
 void main() {
     vec4 colour, normalDepth;
     accumulateViews(albedoAtlas, normalAtlas, atlasLayout, vViews, vWeights, vUv0, vUv1, vUv2, vUv3, colour, normalDepth);
@@ -73,7 +73,8 @@ void main() {
     vec3 n = length(normalDepth.xyz) > 0.0 ? normalize(normalDepth.xyz) : vec3(0.0, 0.0, 1.0);
     vec4 clip = vClip + (normalDepth.w / colour.a) * vClipForward;
     gl_FragDepth = clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
-    gl_FragColor = vec4(albedo * (ambientColour + sunColour * max(dot(n, sunDirection), 0.0)), min(colour.a, 1.0));
+    // Tree space is world space turned by nothing: its normals are world normals.
+    gl_FragColor = vec4(albedo * lambertLight(n, sunDirection, vec3(0.0, 0.0, 1.0)), min(colour.a, 1.0));
     #include <colorspace_fragment>
 }
 `;
@@ -158,8 +159,7 @@ export class TreeImpostors {
                 albedoAtlas: { value: species.albedo },
                 normalAtlas: { value: species.normal },
                 sunDirection: { value: this.lighting.sunDirection },
-                sunColour: { value: this.lighting.sunColour },
-                ambientColour: { value: this.lighting.ambientColour },
+                ...lightingUniforms(this.lighting),
                 cutout: { value: this.multisampled ? 0.02 : 0.5 },
             },
         });

@@ -6,6 +6,7 @@
 import * as THREE from 'three';
 
 import { Ground } from './ground.js';
+import { makeLights } from './lights.js';
 
 export class World {
     constructor(canvas, { antialias = true } = {}) {
@@ -16,20 +17,9 @@ export class World {
         this.scene.fog = new THREE.Fog(this.scene.background, 2500, 9000);
         this.camera = new THREE.PerspectiveCamera(60, 1, 0.5, 20000);
         this.camera.up.set(0, 0, 1);
-        const sunDirection = new THREE.Vector3(0.45, -0.35, 0.82).normalize();
-        const sun = new THREE.DirectionalLight(new THREE.Color(1.0, 0.96, 0.9), 2.2);
-        sun.position.copy(sunDirection);
-        const sky = new THREE.HemisphereLight(0xc8d8ff, 0x6a6255, 1.4);
-        this.scene.add(sun, sky);
-        // The impostor shader lights with these two terms, so that an impostor and the mesh it
-        // stands for match across an LOD switch: three.js's Lambert divides light by pi, and
-        // the hemisphere light seen by a facade (normal on the horizon) is the mean of its two
-        // colours.
-        this.lighting = {
-            sunDirection,
-            sunColour: sun.color.clone().multiplyScalar(sun.intensity / Math.PI),
-            ambientColour: sky.color.clone().lerp(sky.groundColor, 0.5).multiplyScalar(sky.intensity / Math.PI),
-        };
+        const { lights, lighting } = makeLights();
+        this.scene.add(...lights);
+        this.lighting = lighting; // for the shaders that light without three.js's lights
         this.groundPlane = new Ground(new THREE.Color(0.3, 0.32, 0.28), this.lighting);
         this.ground = this.groundPlane.mesh; // what picking hits
         this.scene.add(this.ground);
