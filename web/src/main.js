@@ -7,6 +7,7 @@ import { CameraControls } from './camera/controls.js';
 import { EditClient } from './edits/edit_client.js';
 import { makeExtrudedMaterial } from './render/extruded_mesh.js';
 import { ImpostorSet } from './render/impostors.js';
+import { isSoftwareRenderer, OccluderDepth } from './render/occluder_depth.js';
 import { TreeImpostors } from './render/tree_impostors.js';
 import { ShapeLibrary } from './render/shape_library.js';
 import { World } from './render/world.js';
@@ -62,6 +63,12 @@ async function start() {
     const terminal = new THREE.MeshLambertMaterial({ vertexColors: true });
     const materials = { extruded: makeExtrudedMaterial(), backing: new THREE.MeshLambertMaterial({ vertexColors: true }), terminal };
     const budgetMiB = Number(params.get('budget') ?? 384);
+    // ?occlusion=1 or 0 turns occlusion culling on or off; by default it is on where the GL
+    // renders on the CPU.
+    const occlusionParam = params.get('occlusion');
+    const software = isSoftwareRenderer(world.renderer);
+    const occlusion = occlusionParam === null ? software : occlusionParam !== '0';
+    const occlusionStatus = occlusion ? `occlusion on${occlusionParam === null ? ' (software GL)' : ''}` : 'occlusion off';
     const streamer = new Streamer({
         scene,
         world,
@@ -74,6 +81,7 @@ async function start() {
         concurrency: Number(params.get('concurrency') ?? 6),
         onError: (text) => messages.add(text),
         onStale: () => reloadIndex(),
+        occluders: occlusion ? new OccluderDepth(world) : null,
     });
     streamer.setIndex(index);
 
@@ -202,6 +210,7 @@ async function start() {
             meshes: capabilities.terminal_meshes ? Object.values(libraries).map((l) => l.status).join(', ') : 'stand-ins (not served: capabilities.terminal_meshes is false)',
             impostors: capabilities.impostors ? impostors.status : 'off (not served: capabilities.impostors is false)',
             trees: capabilities.tree_billboards ? trees.status : 'off (not served: capabilities.tree_billboards is false)',
+            occlusion: occlusion ? `${occlusionStatus}, ${streamer.stats.terminals.occluded} hidden` : occlusionStatus,
             loadTime,
             lastEdit: edits.lastPost ?? null,
             versions: streamer.versions(selection?.cell && streamer.cells.find((c) => c.q === selection.cell[0] && c.r === selection.cell[1])),

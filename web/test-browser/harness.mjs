@@ -1,5 +1,6 @@
-// What the browser test and the walk benchmark share: `hexlod serve` as a child process (its
-// printed URL parsed) and Debian's chromium under playwright-core with a fresh profile.
+// What the browser tests and the benchmarks share: `hexlod serve` as a child process (its
+// printed URL parsed), Debian's chromium under playwright-core with a fresh profile, the
+// viewer's settled view of a URL, and how far apart two images are.
 //
 // WebGL without a GPU: chromium falls back to SwiftShader (ANGLE on its Vulkan device) under
 // --disable-gpu; --use-angle=swiftshader --enable-unsafe-swiftshader ask for it explicitly, since
@@ -62,4 +63,69 @@ export async function launchChromium(viewport) {
             fs.rmSync(profile, { recursive: true, force: true });
         },
     };
+}
+
+// The viewer at `url` once everything it wants is loaded and a few frames later, so that its
+// lists are sorted for what it drew last: {state: window.hexlod.state(), image: the canvas
+// alone, without the panels over it, as a PNG Buffer}.
+export async function settledView(page, url, timeout = 90000) {
+    await page.goto(url);
+    await page.waitForFunction(() => window.hexlod?.idle(), null, { timeout, polling: 250 });
+    for (let i = 0; i < 4; ++i) await page.evaluate(() => new Promise((done) => requestAnimationFrame(() => done())));
+    await page.waitForFunction(() => window.hexlod.idle(), null, { timeout, polling: 250 });
+    const state = await page.evaluate(() => window.hexlod.state());
+    const png = await page.evaluate(() => document.getElementById('view').toDataURL('image/png'));
+    return { state, image: Buffer.from(png.split(',')[1], 'base64') };
+}
+
+// Two PNGs of one size compared in the page (no PNG library needed here): PSNR over RGB,
+// the pixels that differ at all and those apart by more than 24 of 255 in a channel.
+export async function imageDifference(page, a, b) {
+    return page.evaluate(
+        async ({ a, b }) => {
+            const decode = async (base64) => {
+                const bitmap = await createImageBitmap(await (await fetch(`data:image/png;base64,${base64}`)).blob());
+                const context = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d');
+                context.drawImage(bitmap, 0, 0);
+                return context.getImageData(0, 0, bitmap.width, bitmap.height).data;
+            };
+            const [pa, pb] = [await decode(a), await decode(b)];
+            let se = 0, different = 0, apart = 0;
+            for (let i = 0; i < pa.length; i += 4) {
+                let most = 0;
+                for (let k = 0; k < 3; ++k) {
+                    se += (pa[i + k] - pb[i + k]) ** 2;
+                    most = Math.max(most, Math.abs(pa[i + k] - pb[i + k]));
+                }
+                different += most > 0;
+                apart += most > 24;
+            }
+            const pixels = pa.length / 4;
+            return { psnr: se === 0 ? Infinity : 10 * Math.log10((255 * 255) / (se / (3 * pixels))), different, apart, pixels };
+        },
+        { a: a.toString('base64'), b: b.toString('base64') },
+    );
+}
+
+// A browser test on a scene of its own: `writeScene(folder)` writes it into a fresh folder,
+// `hexlod serve` serves it with small impostors baked into a store in that folder (a quick
+// bake that leaves nothing behind), chromium opens at `viewport`, and
+// `body({base, page, pageErrors})` runs; then both are closed and the folder removed.
+export async function withServedScene(binary, writeScene, { impostorGrid, viewport }, body) {
+    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-browser-'));
+    const server = startServer(binary, writeScene(folder), [
+        '--impostor-store', path.join(folder, 'impostors'), '--impostor-grid', String(impostorGrid), '--impostor-res', '16',
+    ]);
+    let browser;
+    try {
+        const base = await server.url;
+        browser = await launchChromium(viewport);
+        const pageErrors = [];
+        browser.page.on('pageerror', (e) => pageErrors.push(e.message));
+        return await body({ base, page: browser.page, pageErrors });
+    } finally {
+        await browser?.close();
+        server.stop();
+        fs.rmSync(folder, { recursive: true, force: true });
+    }
 }

@@ -15,7 +15,7 @@ import path from 'node:path';
 import test from 'node:test';
 import { fileURLToPath } from 'node:url';
 
-import { launchChromium, startServer } from './harness.mjs';
+import { withServedScene } from './harness.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const binary = process.env.HEXLOD_BINARY;
@@ -69,17 +69,7 @@ async function compare(page, shots) {
 test('far trees are billboards that stand for their trees, and edited trees get species of their own', { timeout: 240000 }, async () => {
     assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
     fs.mkdirSync(artifacts, { recursive: true });
-    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-trees-'));
-    const server = startServer(binary, writeScene(folder), [
-        '--impostor-store', path.join(folder, 'impostors'), '--impostor-grid', '6', '--impostor-res', '16',
-    ]);
-    let browser;
-    try {
-        const base = await server.url;
-        browser = await launchChromium({ width, height });
-        const page = browser.page;
-        const pageErrors = [];
-        page.on('pageerror', (e) => pageErrors.push(e.message));
+    await withServedScene(binary, writeScene, { impostorGrid: 6, viewport: { width, height } }, async ({ base, page, pageErrors }) => {
         // South of the park at eye height, 150 m from its nearest cell and farther; by distance,
         // trees are billboards from 195 m at this viewport.
         const near = '0,-300,4,90,0', far = '0,-400,4,90,0';
@@ -211,9 +201,5 @@ test('far trees are billboards that stand for their trees, and edited trees get 
                 `after the edit, ${added.length} species baked and every tree a billboard again in ${rebillboarded.toFixed(2)} s, ${changed} pixels changed; ` +
                 `at eye level the ground hides ${ground.hidden} of ${ground.objects} pixels of houses and trees`,
         );
-    } finally {
-        await browser?.close();
-        server.stop();
-        fs.rmSync(folder, { recursive: true, force: true });
-    }
+    });
 });

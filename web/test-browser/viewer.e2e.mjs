@@ -11,7 +11,7 @@ import path from 'node:path';
 import test from 'node:test';
 import { fileURLToPath } from 'node:url';
 
-import { launchChromium, startServer } from './harness.mjs';
+import { withServedScene } from './harness.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const binary = process.env.HEXLOD_BINARY;
@@ -64,18 +64,7 @@ async function changedShare(page, before, after, rect) {
 test('the viewer loads, moves, selects a building, tunes it and shows the edit', { timeout: 240000 }, async () => {
     assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
     fs.mkdirSync(artifacts, { recursive: true });
-    const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-browser-'));
-    // Small impostors in a store of the test's own, so the bake is quick and leaves nothing behind.
-    const server = startServer(binary, writeScene(folder), [
-        '--impostor-store', path.join(folder, 'impostors'), '--impostor-grid', '4', '--impostor-res', '16',
-    ]);
-    let browser;
-    try {
-        const base = await server.url;
-        browser = await launchChromium({ width: 800, height: 450 });
-        const page = browser.page;
-        const pageErrors = [];
-        page.on('pageerror', (e) => pageErrors.push(e.message));
+    await withServedScene(binary, writeScene, { impostorGrid: 4, viewport: { width: 800, height: 450 } }, async ({ base, page, pageErrors }) => {
         const shot = (name) => page.screenshot({ path: path.join(artifacts, name), timeout: 60000 });
         const stats = () => page.locator('#stats').textContent();
 
@@ -191,9 +180,5 @@ test('the viewer loads, moves, selects a building, tunes it and shows the edit',
                 `${final.fps.toFixed(1)} fps, ${(final.traffic.bytes / 1024).toFixed(0)} KiB in ${final.traffic.requests} requests; ` +
                 `artifacts in ${artifacts}`,
         );
-    } finally {
-        await browser?.close();
-        server.stop();
-        fs.rmSync(folder, { recursive: true, force: true });
-    }
+    });
 });

@@ -1,6 +1,7 @@
 // TerminalBatch's sorting of a terminal set into LOD4, LOD3 and LOD2 lists (src/render/
 // terminal_batch.js): terminals behind their wall or outside the view are left out, and the
-// lists are sorted again when the camera has moved or turned enough, not before.
+// lists are sorted again when the camera has moved or turned enough, or with a new occlusion
+// image, not before.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import * as THREE from 'three';
@@ -47,12 +48,12 @@ test('terminals behind their wall or outside the view are left out of every list
     const batch = new TerminalBatch(setOf([[0, 20, 0], [0, -20, 0], [60, 15, 0], [0, 150, 0], [0, 250, 0]]),
         library, material, impostors);
     batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]));
-    assert.deepEqual(batch.counts, { 4: 1, 3: 1, 2: 1, culled: 2, coarse: 0 });
+    assert.deepEqual(batch.counts, { 4: 1, 3: 1, 2: 1, culled: 2, coarse: 0, occluded: 0 });
     assert.deepEqual(lod4Records(batch), [0]);
     // Without a view only the one behind its wall is left out.
     const all = new TerminalBatch(setOf([[0, 20, 0], [0, -20, 0], [60, 15, 0]]), library, material, impostors);
     all.updateLod([0, 0, 0], distances);
-    assert.deepEqual(all.counts, { 4: 2, 3: 0, 2: 0, culled: 1, coarse: 0 });
+    assert.deepEqual(all.counts, { 4: 2, 3: 0, 2: 0, culled: 1, coarse: 0, occluded: 0 });
     assert.deepEqual(lod4Records(all), [0, 2]);
 });
 
@@ -65,7 +66,7 @@ test('the lists are sorted again once the view turns by half the margin, and not
     // Turned 70 degrees to the right, towards +x: the terminal at x = 60 is in view, the one
     // straight ahead before is not.
     batch.updateLod([0, 0, 0], distances, null, viewAlong(turned(70)));
-    assert.deepEqual(batch.counts, { 4: 1, 3: 0, 2: 0, culled: 1, coarse: 0 });
+    assert.deepEqual(batch.counts, { 4: 1, 3: 0, 2: 0, culled: 1, coarse: 0, occluded: 0 });
     assert.deepEqual(lod4Records(batch), [1]);
     // A changed field of view sorts again too, even unturned.
     const wider = { ...viewAlong(turned(70)), key: 'wider' };
@@ -88,7 +89,7 @@ test('a shape without impostor draws its coarse mesh where the deviation project
     batch.updateLod([0, 0, 0], perMetre);
     const run = batch.runs[0];
     assert.equal(run.coarse.geometry, coarseGeometry);
-    assert.deepEqual(batch.counts, { 4: 3, 3: 0, 2: 0, culled: 0, coarse: 1 }, 'LOD4 counts the coarse mesh\'s terminals too');
+    assert.deepEqual(batch.counts, { 4: 3, 3: 0, 2: 0, culled: 0, coarse: 1, occluded: 0 }, 'LOD4 counts the coarse mesh\'s terminals too');
     assert.deepEqual(lod4Records(batch), [0, 2]);
     assert.equal(run.coarse.count, 1);
     assert.equal(batch.recordOf(run.coarse, 0), 1, 'a picked coarse instance names its record');
@@ -101,4 +102,25 @@ test('a shape without impostor draws its coarse mesh where the deviation project
     // A shape with an impostor never falls back on a coarse mesh, as in the native pass.
     const withImpostor = new TerminalBatch(setOf([[0, 30, 0]]), coarseLibrary, material, impostors);
     assert.equal(withImpostor.runs[0].coarse, null);
+});
+
+test('terminals the occlusion tiles hide are left out, and each new image sorts the lists again', () => {
+    const batch = new TerminalBatch(setOf([[0, 20, 0], [0, 150, 0], [0, 250, 0]]), library, material, impostors);
+    // Stand-in tiles hiding everything past y = 100, and the spheres they were asked about.
+    const asked = [];
+    const occlusion = (version) => ({ version, hidesSphere: (x, y, z, r) => (asked.push(r), y > 100) });
+    batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]), occlusion(1));
+    assert.deepEqual(batch.counts, { 4: 1, 3: 0, 2: 0, culled: 0, coarse: 0, occluded: 2 });
+    assert.deepEqual(lod4Records(batch), [0]);
+    // Each asked about with the scope's doubled half diagonal, as the view test.
+    assert.ok(asked.every((r) => Math.abs(r - Math.hypot(1, 2, 0.1)) < 1e-3), `radii ${asked}`);
+    const counts = batch.counts;
+    batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]), occlusion(1));
+    assert.equal(batch.counts, counts, 'the same image keeps the lists');
+    batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]), { version: 2, hidesSphere: () => false });
+    assert.deepEqual(batch.counts, { 4: 1, 3: 1, 2: 1, culled: 0, coarse: 0, occluded: 0 });
+    // Turned off, the lists are sorted without it.
+    batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]), occlusion(3));
+    batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]));
+    assert.equal(batch.counts.occluded, 0);
 });

@@ -4,8 +4,9 @@
 // from its quaternion (4 x snorm16), S = (w, h, d) with d = depthRatio · min(w, h) (flat shapes
 // get a hair of depth so the matrix stays invertible for normals). With impostors, terminals
 // are re-sorted into the three lists by lod_policy.classifyTerminal whenever the camera has
-// moved or turned enough for the decision to change, leaving out those behind their wall or
-// outside the view (a CPU stand-in for the native renderer's GPU pass);
+// moved or turned enough for the decision to change, leaving out those behind their wall,
+// outside the view or, with occlusion tiles, hidden behind the base volumes (a CPU stand-in
+// for the native renderer's GPU pass);
 // without them every terminal is LOD4 and the lists never change, unless a tree batch's cut
 // moves trees between terminals and billboards, or a shape has a coarse mesh (a tree part):
 // its LOD4 terminals are then sorted between the shape's mesh and the coarse one by
@@ -13,7 +14,7 @@
 import * as THREE from 'three';
 
 import { halfToFloat, quaternionAxes, snorm16ToFloat } from '../payload/record.js';
-import { COARSE, classifyTerminal, coarseMeshReach, movedEnough, moveTolerance, turnedEnough } from '../stream/lod_policy.js';
+import { COARSE, classifyTerminal, coarseMeshReach, movedEnough, moveTolerance, OCCLUDED, turnedEnough } from '../stream/lod_policy.js';
 
 const FLAT_DEPTH = 1e-3;
 
@@ -59,8 +60,9 @@ export class TerminalBatch {
             if (count > 0) this.runs.push(this.makeRun(s, first, count, library, material, impostors));
             first += count;
         }
-        this.counts = { 4: n, 3: 0, 2: 0, culled: 0, coarse: 0 };
+        this.counts = { 4: n, 3: 0, 2: 0, culled: 0, coarse: 0, occluded: 0 };
         this.lastCamera = null;
+        this.lastOcclusion = null;
         this.lastForward = null;
         this.lastViewKey = null;
         this.lastPerMetre = -1;
@@ -111,15 +113,20 @@ export class TerminalBatch {
 
     // `camera`: the camera position relative to this batch's cell origin (doubles); `cut`: the
     // batch's TreeBillboards, whose billboard trees' terminals are left out, or null; `view`:
-    // lod_policy's view, whose terminals outside it are left out too (null: none are).
-    updateLod(camera, distances, cut = null, view = null) {
-        if (!this.sorted) return;
+    // lod_policy's view, whose terminals outside it are left out too (null: none are);
+    // `occlusion`: an OcclusionTiles, whose hidden terminals are left out, sorted again with
+    // each new one (null: none are).
+    updateLod(camera, distances, cut = null, view = null, occlusion = null) {
+        if (!this.sorted) return; // (then the lists hold every terminal, and occlusion is not tested)
         const cutVersion = cut ? cut.version : -1;
         const viewKey = view ? view.key : null;
         const perMetre = distances.coarse ?? 0;
+        const occlusionVersion = occlusion ? occlusion.version : null;
         if (cutVersion === this.lastCut && viewKey === this.lastViewKey && perMetre === this.lastPerMetre &&
-            !movedEnough(this.lastCamera, camera, distances.lod3) && !(view && turnedEnough(this.lastForward, view.forward)))
+            occlusionVersion === this.lastOcclusion && !movedEnough(this.lastCamera, camera, distances.lod3) &&
+            !(view && turnedEnough(this.lastForward, view.forward)))
             return;
+        this.lastOcclusion = occlusionVersion;
         this.lastCamera = camera.slice();
         this.lastCut = cutVersion;
         this.lastPerMetre = perMetre;
@@ -127,7 +134,7 @@ export class TerminalBatch {
         this.lastForward = view ? view.forward.slice() : null;
         // How far the camera may move before the lists are sorted again.
         const slack = moveTolerance(distances.lod3);
-        const counts = { 4: 0, 3: 0, 2: 0, culled: 0, coarse: 0 };
+        const counts = { 4: 0, 3: 0, 2: 0, culled: 0, coarse: 0, occluded: 0 };
         const corner = [0, 0, 0], axes = new Float64Array(9);
         for (const run of this.runs) {
             const lists = { 4: run.lod4, 3: run.lod3, 2: run.lod2, [COARSE]: run.coarse };
@@ -141,9 +148,9 @@ export class TerminalBatch {
                 corner[2] = f[k + 2] - camera[2];
                 for (let j = 0; j < 9; ++j) axes[j] = f[k + 3 + j];
                 const reach = run.coarse ? run.reach[i - run.first] * perMetre : Infinity;
-                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3, view, slack, reach);
-                if (lod === 0) {
-                    ++counts.culled;
+                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3, view, slack, reach, occlusion);
+                if (lod === 0 || lod === OCCLUDED) {
+                    ++counts[lod === 0 ? 'culled' : 'occluded'];
                     continue;
                 }
                 const mesh = lists[lod];

@@ -40,16 +40,21 @@ export class TreeBillboards {
         }
         this.treeIds = buildings.id;
         this.meshes = new Map(); // species index -> ImpostorQuads, `count` the billboards drawn
+        this.spheres = new Map(); // species index -> its bounding sphere (tree space): x, y, z, radius
         for (const [s, capacity] of perSpecies) {
             const mesh = species.makeMesh(s, capacity);
             this.meshes.set(s, mesh);
             this.group.add(mesh);
+            const { centre, radius } = species.species[s].impostor;
+            this.spheres.set(s, [...centre, radius]);
         }
         this.billboardIds = new Set(); // the trees drawn as billboards now
         this.count = 0; // billboards drawn
+        this.occluded = 0; // billboards the occlusion tiles hide
         this.version = 0; // grows whenever the cut changes
         this.lastCamera = null;
         this.lastDistance = -1;
+        this.lastOcclusion = null;
         // Each billboard's matrix and, once drawn, its quad's vertices.
         this.gpuBytes = BYTES_PER_QUAD * (n - this.unmatched);
     }
@@ -60,12 +65,19 @@ export class TreeBillboards {
 
     // The cut for a camera at `camera` (cell-local): trees of a served species at least
     // `distance` from it are billboards (distance 0: all of them). Recomputed when the camera
-    // has moved enough for a tree to cross, or the distance changed.
-    updateCut(camera, distance) {
-        if (this.lastCamera && distance === 0 && this.lastDistance === 0) return; // all, wherever the camera is
-        if (distance === this.lastDistance && !movedEnough(this.lastCamera, camera, distance)) return;
+    // has moved enough for a tree to cross, the distance changed, or with a new `occlusion`
+    // (an OcclusionTiles, or null), whose hidden billboards are not drawn: they stay billboards
+    // for the cut, so their terminals are not drawn either.
+    updateCut(camera, distance, occlusion = null) {
+        const occlusionVersion = occlusion ? occlusion.version : null;
+        if (occlusionVersion === this.lastOcclusion) {
+            if (this.lastCamera && distance === 0 && this.lastDistance === 0) return; // all, wherever the camera is
+            if (distance === this.lastDistance && !movedEnough(this.lastCamera, camera, distance)) return;
+        }
+        this.lastOcclusion = occlusionVersion;
         this.lastCamera = camera.slice();
         this.lastDistance = distance;
+        this.occluded = 0;
         let changed = false;
         const filled = new Map();
         const b = this.bases;
@@ -79,6 +91,14 @@ export class TreeBillboards {
                 else this.billboardIds.delete(id);
             }
             if (!far) continue;
+            if (occlusion) {
+                const sphere = this.spheres.get(s), k = 3 * i;
+                const [x, y, z] = [b[k] + sphere[0] - camera[0], b[k + 1] + sphere[1] - camera[1], b[k + 2] + sphere[2] - camera[2]];
+                if (occlusion.hidesSphere(x, y, z, sphere[3])) {
+                    ++this.occluded;
+                    continue;
+                }
+            }
             const slot = filled.get(s) ?? 0;
             this.meshes.get(s).instanceMatrix.array.set(b.subarray(3 * i, 3 * i + 3), 16 * slot + 12);
             filled.set(s, slot + 1);

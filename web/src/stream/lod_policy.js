@@ -111,10 +111,13 @@ export function outsideView(view, cx, cy, cz, radius) {
 // coarseMeshReach; Infinity: the shape has none) is no farther than its scope centre. With a
 // `view`, a terminal outside it is culled too; `slack` (metres) is how far the camera may move
 // before the decision is made again: it widens the view test and narrows the coarse mesh's
-// range, so neither decision is wrong until then.
+// range, so neither decision is wrong until then. With `occlusion` (an OcclusionTiles), a
+// terminal behind the opaque base volumes is OCCLUDED.
 export const COARSE = 'coarse';
+// classifyTerminal's answer for a terminal that the `occlusion` tiles (occlusion_tiles.js) hide.
+export const OCCLUDED = 'occluded';
 
-export function classifyTerminal(corner, axes, w, h, d, distances, impostors, view = null, slack = 0, coarseReach = Infinity) {
+export function classifyTerminal(corner, axes, w, h, d, distances, impostors, view = null, slack = 0, coarseReach = Infinity, occlusion = null) {
     const cx = corner[0] + axes[0] * 0.5 * w + axes[3] * 0.5 * h;
     const cy = corner[1] + axes[1] * 0.5 * w + axes[4] * 0.5 * h;
     const cz = corner[2] + axes[2] * 0.5 * w + axes[5] * 0.5 * h;
@@ -123,6 +126,7 @@ export function classifyTerminal(corner, axes, w, h, d, distances, impostors, vi
     // The scope box's half diagonal, doubled: a mesh may reach past its scope (a balcony's
     // depth ratio is above 1), and an impostor quad covers the mesh's bounds.
     if (view && outsideView(view, cx, cy, cz, Math.hypot(w, h, d) + slack)) return 0;
+    if (occlusion && occlusion.hidesSphere(cx, cy, cz, Math.hypot(w, h, d))) return OCCLUDED;
     const distance = Math.sqrt(cx * cx + cy * cy + cz * cz);
     if (!impostors) return distance - slack >= coarseReach ? COARSE : 4;
     return distance >= distances.lod2 ? 2 : distance >= distances.lod3 ? 3 : 4;

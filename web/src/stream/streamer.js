@@ -12,6 +12,7 @@ import { getBinary } from '../api.js';
 import { decodeExtrudedSet } from '../payload/extruded_set.js';
 import { decodeTerminalSet } from '../payload/terminal_set.js';
 import { buildExtrudedGeometry } from '../render/extruded_mesh.js';
+import { OCCLUDER_LAYER } from '../render/occluder_depth.js';
 import { TerminalBatch } from '../render/terminal_batch.js';
 import { TreeBillboards } from '../render/tree_billboards.js';
 import { ContentCache } from './content_cache.js';
@@ -21,7 +22,9 @@ import { decideCell, EXTRUDED, lodDistance, TERMINALS, terminalLodDistances } fr
 const BACKING_INSET = 0.5; // metres: base volumes behind terminal facades, as the native renderer
 
 export class Streamer {
-    constructor({ scene, world, libraries, impostors, trees, treeForm = 'auto', materials, budgetBytes, concurrency, onError, onStale }) {
+    // `occluders`: an OccluderDepth (render/occluder_depth.js) to cull the terminals that the
+    // base volumes hide, or null.
+    constructor({ scene, world, libraries, impostors, trees, treeForm = 'auto', materials, budgetBytes, concurrency, onError, onStale, occluders = null }) {
         this.scene = scene;
         this.profile = scene.lod;
         this.world = world;
@@ -30,6 +33,8 @@ export class Streamer {
         this.trees = trees; // TreeImpostors: species billboards
         this.treeForm = treeForm; // 'auto' (by distance), every tree as 'terminals' or 'billboards', or 'none'
         this.materials = materials; // {extruded, backing, terminal}
+        this.occluders = occluders;
+        this.contentVersion = 0; // changes whenever what the cell groups draw changes
         this.onError = onError;
         this.cells = [];
         this.lodOf = new Map(); // "q,r" -> LOD, kept across index reloads
@@ -41,7 +46,7 @@ export class Streamer {
             onFailed: (request, error) => onError(`${request.url}: ${error.message ?? error}`),
             onStale: () => onStale(),
         });
-        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 }, decodeMs: 0 };
+        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
         this.frustum = new THREE.Frustum();
         this.box = new THREE.Box3();
     }
@@ -125,6 +130,7 @@ export class Streamer {
                 const inset = variant === 'backing' ? BACKING_INSET : 0;
                 const { geometry, buildingOfTriangle } = buildExtrudedGeometry(value.set, this.grammar(value.set.grammar), { inset, windows: variant === 'lod0' });
                 const mesh = new THREE.Mesh(geometry, variant === 'lod0' ? this.materials.extruded : this.materials.backing);
+                mesh.layers.enable(OCCLUDER_LAYER); // opaque: what it hides need not be drawn
                 mesh.userData = { buildingOfTriangle, grammar: value.set.grammar, version: value.version, kind: 'extruded' };
                 value[variant] = mesh;
                 this.cache.grow(url, geometry.getAttribute('position').count * 4 * 14);
@@ -162,7 +168,9 @@ export class Streamer {
         const treeDistance = treeError > 0 ? lodDistance(treeError, this.profile, view.fovY, view.viewportHeight) : Infinity;
         const requests = [];
         const pinned = new Set();
-        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0 }, trees: { billboards: 0, terminals: 0, edited: 0 } };
+        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 } };
+        // The base volumes the last update left in the cell groups, seen from this view.
+        const occlusion = this.occluders ? this.occluders.update(view, this.contentVersion) : null;
         const p = view.position;
         for (const cell of this.cells) {
             const decision = decideCell(this.lodOf.get(cell.id), cell.bounds, view, this.profile);
@@ -174,6 +182,7 @@ export class Streamer {
             const visible = this.frustum.intersectsBox(this.box);
             const near = decision.distance < this.scene.cell_size;
             const group = this.world.cellGroup(cell);
+            if (group.visible !== visible) ++this.contentVersion;
             group.visible = visible;
             if (!visible && !near) continue;
             if (visible) {
@@ -183,7 +192,7 @@ export class Streamer {
             const sse = Math.min(decision.sse, 1e6);
             const objects = [];
             const local = [p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]]; // the camera, cell-local
-            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests, view: terminalView };
+            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests, view: terminalView, occlusion };
             for (const b of cell.batches) {
                 if (this.grammar(b.grammar)?.kind === 'tree') {
                     this.updateTrees(b, decision, treeDistance, frame);
@@ -205,12 +214,23 @@ export class Streamer {
                 if (!term && !ext) b.drawn = null;
             }
             const keep = new Set(objects);
-            for (const child of [...group.children]) if (!keep.has(child)) group.remove(child);
-            for (const o of objects) if (o.parent !== group) group.add(o);
+            for (const child of [...group.children]) {
+                if (keep.has(child)) continue;
+                group.remove(child);
+                ++this.contentVersion;
+            }
+            for (const o of objects) {
+                if (o.parent === group) continue;
+                group.add(o);
+                ++this.contentVersion;
+            }
         }
         // Cells neither visible nor near draw nothing and pin nothing.
         for (const cell of this.cells) {
-            if (!this.world.cellGroup(cell).visible && cell.distance >= this.scene.cell_size) this.world.cellGroup(cell).clear();
+            const group = this.world.cellGroup(cell);
+            if (group.visible || cell.distance < this.scene.cell_size || group.children.length === 0) continue;
+            group.clear();
+            ++this.contentVersion;
         }
         this.queue.want(requests);
         this.cache.trim(pinned);
@@ -240,10 +260,10 @@ export class Streamer {
         const value = this.cache.get(term);
         frame.objects.push(this.object(term, value, 'terminals'));
         const bytes = value.terminals.gpuBytes;
-        value.terminals.updateLod(frame.local, frame.distances, cut, frame.view);
+        value.terminals.updateLod(frame.local, frame.distances, cut, frame.view, frame.occlusion);
         // Impostor quads grow with what they draw.
         if (value.terminals.gpuBytes !== bytes) this.cache.grow(term, value.terminals.gpuBytes - bytes);
-        if (frame.visible) for (const lod of [4, 3, 2, 'coarse']) frame.stats.terminals[lod] += value.terminals.counts[lod];
+        if (frame.visible) for (const lod of [4, 3, 2, 'coarse', 'occluded']) frame.stats.terminals[lod] += value.terminals.counts[lod];
         frame.pinned.add(term);
         b.drawn = { url: term, version: value.version, kind: 'terminal' };
     }
@@ -280,7 +300,7 @@ export class Streamer {
         const { local, stats, visible } = frame;
         // Near, with its terminals in, the cut is by distance; else every tree that can be is a
         // billboard (far, only the edited trees' terminals are drawn).
-        if (boards) boards.trees.updateCut(local, term && near ? treeDistance : 0);
+        if (boards) boards.trees.updateCut(local, term && near ? treeDistance : 0, frame.occlusion);
         if (term) this.showTerminals(b, term, frame, boards?.trees ?? null);
         if (boards) {
             frame.pinned.add(boards.url);
@@ -290,8 +310,10 @@ export class Streamer {
         if (!term && !boards) b.drawn = null;
         if (!visible) return;
         const members = boards?.trees.speciesOfTree.length ?? b.members;
-        const billboards = boards?.trees.count ?? 0;
+        // Billboards the occlusion tiles hide are billboards still, not drawn.
+        const billboards = (boards?.trees.count ?? 0) + (boards?.trees.occluded ?? 0);
         stats.trees.billboards += billboards;
+        stats.trees.occluded += boards?.trees.occluded ?? 0;
         if (term) stats.trees.terminals += members - billboards;
         if (term && !near) stats.trees.edited += boards.trees.unmatched;
     }
