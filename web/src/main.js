@@ -232,7 +232,8 @@ async function start() {
         tuning,
         pickAt: (x, y) => picker.pick(x, y, canvas),
         selectionRect: () => picker.screenRect(canvas),
-        idle: () => loadTime !== null && streamer.queue.pending === 0 && streamer.queue.inFlight === 0,
+        // Nothing loading, and the lists sorted with the latest occlusion image.
+        idle: () => loadTime !== null && streamer.queue.pending === 0 && streamer.queue.inFlight === 0 && (streamer.occluders?.settled ?? true),
     };
 }
 

@@ -124,3 +124,28 @@ test('terminals the occlusion tiles hide are left out, and each new image sorts 
     batch.updateLod([0, 0, 0], distances, null, viewAlong([0, 1, 0]));
     assert.equal(batch.counts.occluded, 0);
 });
+
+test('a sort that leaves a list as it was uploads nothing of it again', () => {
+    const batch = new TerminalBatch(setOf([[0, 20, 0], [0, 150, 0], [0, 250, 0], [0, 260, 0]]), library, material, impostors);
+    const run = batch.runs[0];
+    const versions = () => [run.lod4.instanceMatrix.version, run.lod3.geometry.attributes.quadX.version, run.lod2.geometry.attributes.quadX.version];
+    const hideBeyond = (version, y) => ({ version, hidesSphere: (x, sy) => sy > y });
+    batch.updateLod([0, 0, 0], distances, null, null, hideBeyond(1, 1000));
+    const first = versions();
+    // A new image that hides nothing more: every list the same, nothing uploaded.
+    batch.updateLod([0, 0, 0], distances, null, null, hideBeyond(2, 1000));
+    assert.deepEqual(versions(), first);
+    assert.deepEqual(batch.counts, { 4: 1, 3: 1, 2: 2, culled: 0, coarse: 0, occluded: 0 });
+    // One that hides the farthest LOD2 terminal: the LOD2 list only shrinks, so its first slot
+    // holds what it held; hiding the nearer one changes the slot, and only that list is uploaded.
+    batch.updateLod([0, 0, 0], distances, null, null, hideBeyond(3, 255));
+    assert.deepEqual(versions(), first);
+    assert.equal(run.lod2.count, 1);
+    batch.updateLod([0, 0, 0], distances, null, null, { version: 4, hidesSphere: (x, y) => y > 200 && y < 255 });
+    const [lod4, lod3, lod2] = versions();
+    assert.deepEqual([lod4, lod3], first.slice(0, 2));
+    assert.ok(lod2 > first[2], 'the changed LOD2 list is uploaded');
+    assert.deepEqual(Array.from(run.lod2Records.subarray(0, run.lod2.count)), [3]);
+    // Its matrix is record 3's: the corner at (0, 260, 0).
+    assert.deepEqual(Array.from(run.lod2.instanceMatrix.array.subarray(12, 15)), [0, 260, 0]);
+});

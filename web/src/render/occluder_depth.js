@@ -1,10 +1,17 @@
 // The depth image occlusion culling tests terminals against (stream/occlusion_tiles.js): the
 // opaque base volumes (LOD0 extruded sets, and the volumes behind terminal facades), alone, at
-// half the canvas's resolution, each pixel its linear view distance. The image is taken again
-// once the camera has moved or turned a little, or the volumes drawn have changed; between
-// two images a terminal's sphere is tested grown by how far the camera may have moved. What
-// that growth does not cover is parallax between an occluder and what it hides over that
-// metre: a terminal that comes into sight in it shows the volume behind it until the next image.
+// half the canvas's resolution, each pixel its linear view distance.
+//
+// Culling applies while the camera stands still. Moving, every new image would sort every
+// batch's lists again and upload them, and on SwiftShader a walk ran slower with culling than
+// without it (docs/BENCHMARKS.md); standing, one image serves every frame. So update() gives
+// no image while the camera moves (the lists are then sorted without culling, as they must
+// be: what was hidden may come into sight), and once it stands still takes one from there,
+// again whenever the base volumes drawn change. The image is read back without waiting (a
+// fence): a read that waits stalls the page until the GL has finished every frame before it,
+// hundreds of milliseconds on a software GL; it is used once it arrives, if the camera still
+// stands where it was taken. Spheres are grown by SLACK, for a camera that moves between the
+// update that sorted the lists and a frame drawn with them (updates run at most every 50 ms).
 import * as THREE from 'three';
 
 import { farthestPerTile, OcclusionTiles } from '../stream/occlusion_tiles.js';
@@ -13,10 +20,13 @@ import { farthestPerTile, OcclusionTiles } from '../stream/occlusion_tiles.js';
 export const OCCLUDER_LAYER = 1;
 // Depth-image pixels per tile side (at half resolution, 16 canvas pixels, as the native tiles).
 const TILE_PIXELS = 8;
-// The camera moves at most this far (metres) and turns at most this much (radians) before the
-// image is taken again.
-const OCCLUSION_MOVE = 1.0;
-const OCCLUSION_TURN = (1 * Math.PI) / 180;
+// Metres every tested sphere is grown by.
+const SLACK = 1.0;
+
+// Whether two poses ({position, forward, fov, aspect}) are the same.
+function samePose(a, b) {
+    return a.fov === b.fov && a.aspect === b.aspect && a.position.every((v, i) => v === b.position[i]) && a.forward.every((v, i) => v === b.forward[i]);
+}
 
 // Linear view distance over the far distance, in 24 bits spread over red, green and blue.
 const DEPTH_VERTEX = /* glsl */ `
@@ -45,40 +55,46 @@ export class OccluderDepth {
         this.material = new THREE.ShaderMaterial({ vertexShader: DEPTH_VERTEX, fragmentShader: DEPTH_FRAGMENT, uniforms: { far: { value: 1 } } });
         this.camera = new THREE.PerspectiveCamera();
         this.camera.layers.set(OCCLUDER_LAYER);
-        this.pixels = null;
-        this.depths = null;
-        this.snapshot = null;
-        this.taken = null; // {position, forward, contentVersion, fov, aspect} of the snapshot
+        this.snapshot = null; // the latest image read back, an OcclusionTiles
+        this.snapshotPose = null; // where it was taken
+        this.taken = null; // the pose and occluderVersion of the latest image asked for
+        this.lastPose = null; // the camera's at the last update
+        this.pending = false; // whether an image is being read back
+        this.arrived = false; // whether one arrived after the last update
         this.version = 0;
     }
 
-    // The snapshot for this view, taken again when the camera moved or turned enough since the
-    // last one, or the volumes drawn changed (`contentVersion`). `view`: {position, forward}.
-    update(view, contentVersion) {
-        const camera = this.world.camera;
-        const t = this.taken, p = view.position, f = view.forward;
-        const still =
-            t &&
-            t.contentVersion === contentVersion &&
-            t.fov === camera.fov &&
-            t.aspect === camera.aspect &&
-            Math.hypot(p[0] - t.position[0], p[1] - t.position[1], p[2] - t.position[2]) < OCCLUSION_MOVE &&
-            t.forward[0] * f[0] + t.forward[1] * f[1] + t.forward[2] * f[2] > Math.cos(OCCLUSION_TURN);
-        if (still) return this.snapshot;
-        this.take(camera);
-        this.taken = { position: p.slice(), forward: f.slice(), contentVersion, fov: camera.fov, aspect: camera.aspect };
-        return this.snapshot;
+    // Whether the lists can have been sorted with every image asked for: none is being read
+    // back, and none arrived after the last update.
+    get settled() {
+        return !this.pending && !this.arrived;
     }
 
-    take(camera) {
+    // The image to cull with for this view, or null: while the camera moves, and until an
+    // image taken where it stands has arrived. Standing, an image is asked for once, and again
+    // when the base volumes drawn change (`occluderVersion`). `view`: {position, forward}.
+    update(view, occluderVersion) {
+        const camera = this.world.camera;
+        const pose = { position: view.position.slice(), forward: view.forward.slice(), fov: camera.fov, aspect: camera.aspect };
+        const standing = this.lastPose !== null && samePose(this.lastPose, pose);
+        this.lastPose = pose;
+        this.arrived = false;
+        if (!standing) return null;
+        const t = this.taken;
+        if (!this.pending && !(t && t.occluderVersion === occluderVersion && samePose(t.pose, pose))) {
+            this.taken = { pose, occluderVersion };
+            this.take(camera, pose);
+        }
+        return this.snapshot && samePose(this.snapshotPose, pose) ? this.snapshot : null;
+    }
+
+    // Draws the base volumes for `camera`, standing at `pose`, and reads them back without
+    // waiting; the image becomes the snapshot once it arrives.
+    take(camera, pose) {
         const { renderer, scene } = this.world;
         const size = renderer.getDrawingBufferSize(new THREE.Vector2());
         const width = Math.max(1, Math.ceil(size.x / 2)), height = Math.max(1, Math.ceil(size.y / 2));
-        if (this.target.width !== width || this.target.height !== height) {
-            this.target.setSize(width, height);
-            this.pixels = new Uint8Array(4 * width * height);
-            this.depths = new Float32Array(width * height);
-        }
+        if (this.target.width !== width || this.target.height !== height) this.target.setSize(width, height);
         this.camera.copy(camera, false);
         this.camera.layers.set(OCCLUDER_LAYER);
         this.camera.updateMatrixWorld();
@@ -92,19 +108,30 @@ export class OccluderDepth {
         renderer.setClearColor(0xffffff, 1); // the far distance: nothing drawn
         renderer.clear();
         renderer.render(scene, this.camera);
-        renderer.readRenderTargetPixels(this.target, 0, 0, width, height, this.pixels);
+        const pixels = new Uint8Array(4 * width * height);
+        const reading = renderer.readRenderTargetPixelsAsync(this.target, 0, 0, width, height, pixels);
         renderer.setRenderTarget(saved.target);
         renderer.setClearColor(clear, clearAlpha);
         Object.assign(scene, { background: saved.background, fog: saved.fog, overrideMaterial: saved.override });
 
-        const far = camera.far, px = this.pixels;
-        for (let i = 0; i < width * height; ++i) {
-            const v = px[4 * i] * 65536 + px[4 * i + 1] * 256 + px[4 * i + 2];
-            this.depths[i] = v >= 16777215 ? Infinity : (v / 16777215) * far;
-        }
+        const far = camera.far;
         const e = camera.matrixWorldInverse.elements, p = camera.projectionMatrix.elements;
-        const rotation = [e[0], e[1], e[2], e[4], e[5], e[6], e[8], e[9], e[10]];
-        this.snapshot = new OcclusionTiles(farthestPerTile(this.depths, width, height, TILE_PIXELS), { rotation, scaleX: p[0], scaleY: p[5], near: camera.near }, ++this.version, OCCLUSION_MOVE);
+        const frame = { rotation: [e[0], e[1], e[2], e[4], e[5], e[6], e[8], e[9], e[10]], scaleX: p[0], scaleY: p[5], near: camera.near };
+        this.pending = true;
+        reading
+            .then(() => {
+                const depths = new Float32Array(width * height);
+                for (let i = 0; i < width * height; ++i) {
+                    const v = pixels[4 * i] * 65536 + pixels[4 * i + 1] * 256 + pixels[4 * i + 2];
+                    depths[i] = v >= 16777215 ? Infinity : (v / 16777215) * far;
+                }
+                this.snapshot = new OcclusionTiles(farthestPerTile(depths, width, height, TILE_PIXELS), frame, ++this.version, SLACK);
+                this.snapshotPose = pose;
+                this.arrived = true;
+            })
+            // A lost read (a lost context) leaves the last image; the next move asks again.
+            .catch(() => {})
+            .finally(() => (this.pending = false));
     }
 
     dispose() {

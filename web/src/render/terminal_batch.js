@@ -18,6 +18,11 @@ import { COARSE, classifyTerminal, coarseMeshReach, movedEnough, moveTolerance, 
 
 const FLAT_DEPTH = 1e-3;
 
+// The records of a list not sorted yet: none is a record, so every slot is written.
+function unwrittenList(count) {
+    return new Uint32Array(count).fill(0xffffffff);
+}
+
 export class TerminalBatch {
     // `impostors`: an ImpostorSet (impostors.js) or null. `treeCut`: a tree batch, whose
     // terminals of trees shown as billboards updateLod leaves out.
@@ -67,10 +72,13 @@ export class TerminalBatch {
         this.lastViewKey = null;
         this.lastPerMetre = -1;
         this.sorted = treeCut || this.runs.some((r) => r.lod3 || r.coarse);
-        if (this.sorted) for (const run of this.runs) run.records ??= new Uint32Array(run.count);
+        if (this.sorted) for (const run of this.runs) run.records ??= unwrittenList(run.count);
         this.lastCut = -1;
         this.baseBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
-        for (const run of this.runs) if (run.coarse) this.baseBytes += run.coarse.instanceMatrix.array.byteLength + run.reach.byteLength;
+        for (const run of this.runs) {
+            if (run.coarse) this.baseBytes += run.coarse.instanceMatrix.array.byteLength + run.reach.byteLength;
+            for (const list of [run.records, run.lod3Records, run.lod2Records, run.coarse?.userData.records]) this.baseBytes += list?.byteLength ?? 0;
+        }
         // Without impostors or a tree cut the lists never change: the instance buffers hold all there is.
         if (!this.sorted) this.matrices = this.frames = this.sizes = null;
     }
@@ -92,14 +100,16 @@ export class TerminalBatch {
             run.lod2 = impostors.makeMesh(atlas, 2, count);
             run.lod3.count = run.lod2.count = 0;
             for (const mesh of [run.lod3, run.lod2]) this.group.add(mesh);
-            run.records = new Uint32Array(count); // record of each LOD4 instance
+            run.records = unwrittenList(count); // record of each LOD4 instance
+            run.lod3Records = unwrittenList(count);
+            run.lod2Records = unwrittenList(count);
         } else if (info?.coarse) {
             // As in the native pass, only a shape without impostor falls back on a coarse mesh.
             run.coarse = new THREE.InstancedMesh(info.coarse.geometry, material, count);
             run.coarse.count = 0;
             run.coarse.frustumCulled = false;
             run.coarse.userData.batch = this;
-            run.coarse.userData.records = new Uint32Array(count); // record of each coarse instance
+            run.coarse.userData.records = unwrittenList(count); // record of each coarse instance
             this.group.add(run.coarse);
             // Each terminal's coarseMeshReach per metre of deviation scale: its scope is fixed.
             run.reach = new Float32Array(count);
@@ -138,8 +148,9 @@ export class TerminalBatch {
         const corner = [0, 0, 0], axes = new Float64Array(9);
         for (const run of this.runs) {
             const lists = { 4: run.lod4, 3: run.lod3, 2: run.lod2, [COARSE]: run.coarse };
-            const records = { 4: run.records, [COARSE]: run.coarse?.userData.records };
+            const records = { 4: run.records, 3: run.lod3Records, 2: run.lod2Records, [COARSE]: run.coarse?.userData.records };
             const filled = { 4: 0, 3: 0, 2: 0, [COARSE]: 0 };
+            const changed = { 4: false, 3: false, 2: false, [COARSE]: false };
             for (let i = run.first; i < run.first + run.count; ++i) {
                 if (cut && cut.isBillboard(this.set.records[8 * i + 3])) continue;
                 const f = this.frames, k = 13 * i;
@@ -153,17 +164,21 @@ export class TerminalBatch {
                     ++counts[lod === 0 ? 'culled' : 'occluded'];
                     continue;
                 }
-                const mesh = lists[lod];
-                mesh.instanceMatrix.array.set(this.matrices.subarray(16 * i, 16 * i + 16), 16 * filled[lod]);
-                if (records[lod]) records[lod][filled[lod]] = i;
-                ++filled[lod];
+                // A list slot that holds the same record as after the last sort holds its matrix
+                // already, on the GPU too: only lists with a changed slot are uploaded again.
+                const slot = filled[lod]++;
+                if (records[lod][slot] !== i) {
+                    records[lod][slot] = i;
+                    lists[lod].instanceMatrix.array.set(this.matrices.subarray(16 * i, 16 * i + 16), 16 * slot);
+                    changed[lod] = true;
+                }
                 ++counts[lod === COARSE ? 4 : lod];
                 if (lod === COARSE) ++counts.coarse;
             }
             for (const lod of [4, 3, 2, COARSE]) {
                 if (!lists[lod]) continue; // a shape without impostor has no LOD3 and LOD2 lists
                 lists[lod].count = filled[lod];
-                lists[lod].instanceMatrix.needsUpdate = true;
+                if (changed[lod]) lists[lod].instanceMatrix.needsUpdate = true;
             }
             run.lod4.userData.records = run.records ?? null;
         }

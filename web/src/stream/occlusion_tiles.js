@@ -33,18 +33,19 @@ export function farthestPerTile(depths, width, height, tilePixels) {
 export const MAX_TILES = 64;
 
 export class OcclusionTiles {
-    // `tiles`: farthestPerTile's result; `view`: the camera's rotation (world to view, a
-    // column-major 3 x 3 array, the camera at the origin), the projection's x and y scales
-    // (three.js projectionMatrix elements 0 and 5) and near distance; `version`: changes with
-    // every new image, so that lists sorted against an older one are sorted again; `slack`
-    // (metres): how far the camera may move before the next image, by which every sphere is
-    // grown (turning alone changes no ray from the camera, so it changes no occlusion).
+    // `tiles`: farthestPerTile's result; `view`: the image's camera, its rotation (world to
+    // view, a column-major 3 x 3 array, the camera at the origin), the projection's x and y
+    // scales (three.js projectionMatrix elements 0 and 5) and near distance; `version`:
+    // changes with every new image, so that lists sorted against an older one are sorted
+    // again; `slack` (metres): how far the camera may be from where the image was taken while
+    // lists sorted against it are drawn, by which every sphere is grown (turning alone changes
+    // no ray from the camera, so it changes no occlusion).
     constructor({ tiles, columns, rows, width, height, tilePixels }, { rotation, scaleX, scaleY, near }, version, slack = 0) {
         Object.assign(this, { tiles, columns, rows, width, height, tilePixels, rotation, scaleX, scaleY, near, version, slack });
     }
 
-    // Whether the sphere (centre relative to the camera, world axes; radius, metres, before the
-    // slack) is hidden.
+    // Whether the sphere (centre relative to the image's camera, world axes; radius, metres,
+    // before the slack) is hidden.
     hidesSphere(cx, cy, cz, sphereRadius) {
         const radius = sphereRadius + this.slack;
         const m = this.rotation;

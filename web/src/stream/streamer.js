@@ -21,6 +21,9 @@ import { decideCell, EXTRUDED, lodDistance, TERMINALS, terminalLodDistances } fr
 
 const BACKING_INSET = 0.5; // metres: base volumes behind terminal facades, as the native renderer
 
+// Whether a cell group's object is a base volume, which the occlusion image draws.
+const isOccluder = (object) => object.layers.isEnabled(OCCLUDER_LAYER);
+
 export class Streamer {
     // `occluders`: an OccluderDepth (render/occluder_depth.js) to cull the terminals that the
     // base volumes hide, or null.
@@ -34,7 +37,7 @@ export class Streamer {
         this.treeForm = treeForm; // 'auto' (by distance), every tree as 'terminals' or 'billboards', or 'none'
         this.materials = materials; // {extruded, backing, terminal}
         this.occluders = occluders;
-        this.contentVersion = 0; // changes whenever what the cell groups draw changes
+        this.occluderVersion = 0; // changes whenever the base volumes the cells draw change
         this.onError = onError;
         this.cells = [];
         this.lodOf = new Map(); // "q,r" -> LOD, kept across index reloads
@@ -170,7 +173,7 @@ export class Streamer {
         const pinned = new Set();
         const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 } };
         // The base volumes the last update left in the cell groups, seen from this view.
-        const occlusion = this.occluders ? this.occluders.update(view, this.contentVersion) : null;
+        const occlusion = this.occluders ? this.occluders.update(view, this.occluderVersion) : null;
         const p = view.position;
         for (const cell of this.cells) {
             const decision = decideCell(this.lodOf.get(cell.id), cell.bounds, view, this.profile);
@@ -182,7 +185,7 @@ export class Streamer {
             const visible = this.frustum.intersectsBox(this.box);
             const near = decision.distance < this.scene.cell_size;
             const group = this.world.cellGroup(cell);
-            if (group.visible !== visible) ++this.contentVersion;
+            if (group.visible !== visible && group.children.some(isOccluder)) ++this.occluderVersion;
             group.visible = visible;
             if (!visible && !near) continue;
             if (visible) {
@@ -217,20 +220,17 @@ export class Streamer {
             for (const child of [...group.children]) {
                 if (keep.has(child)) continue;
                 group.remove(child);
-                ++this.contentVersion;
+                if (isOccluder(child)) ++this.occluderVersion;
             }
             for (const o of objects) {
                 if (o.parent === group) continue;
                 group.add(o);
-                ++this.contentVersion;
+                if (isOccluder(o)) ++this.occluderVersion;
             }
         }
         // Cells neither visible nor near draw nothing and pin nothing.
         for (const cell of this.cells) {
-            const group = this.world.cellGroup(cell);
-            if (group.visible || cell.distance < this.scene.cell_size || group.children.length === 0) continue;
-            group.clear();
-            ++this.contentVersion;
+            if (!this.world.cellGroup(cell).visible && cell.distance >= this.scene.cell_size) this.world.cellGroup(cell).clear();
         }
         this.queue.want(requests);
         this.cache.trim(pinned);
