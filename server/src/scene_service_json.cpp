@@ -54,27 +54,29 @@ std::string speciesUrl(uint32_t species, uint64_t key, const char* suffix) {
     return "/api/v1/tree-impostors/" + std::to_string(species) + "/" + cache::hexDigest(key) + suffix;
 }
 
+// "/api/v1/{collection}/{grammar}/{shape}/{key}" + suffix: every shape asset's URL.
+std::string shapeAssetUrl(const char* collection, uint32_t grammar, uint32_t shape, uint64_t key,
+                          const char* suffix) {
+    return std::string("/api/v1/") + collection + "/" + std::to_string(grammar) + "/" +
+           std::to_string(shape) + "/" + cache::hexDigest(key) + suffix;
+}
+
 } // namespace
 
 std::string SceneService::meshUrl(uint32_t grammar, uint32_t shape) const {
     const MeshAsset* mesh = assets_.mesh(grammar, shape);
-    if (!mesh) return {};
-    return "/api/v1/meshes/" + std::to_string(grammar) + "/" + std::to_string(shape) + "/" +
-           cache::hexDigest(mesh->hash) + ".glb";
+    return mesh ? shapeAssetUrl("meshes", grammar, shape, mesh->hash, ".glb") : std::string();
 }
 
 std::string SceneService::coarseMeshUrl(uint32_t grammar, uint32_t shape) const {
     const MeshAsset* mesh = assets_.mesh(grammar, shape);
-    if (!mesh || !mesh->coarse) return {};
-    return "/api/v1/meshes/" + std::to_string(grammar) + "/" + std::to_string(shape) + "/" +
-           cache::hexDigest(mesh->coarse->hash) + ".coarse.glb";
+    return mesh && mesh->coarse ? shapeAssetUrl("meshes", grammar, shape, mesh->coarse->hash, ".coarse.glb")
+                                : std::string();
 }
 
 std::string SceneService::impostorUrl(uint32_t grammar, uint32_t shape, const char* suffix) const {
     const ImpostorAsset* impostor = assets_.impostor(grammar, shape);
-    if (!impostor) return {};
-    return "/api/v1/impostors/" + std::to_string(grammar) + "/" + std::to_string(shape) + "/" +
-           cache::hexDigest(impostor->key) + suffix;
+    return impostor ? shapeAssetUrl("impostors", grammar, shape, impostor->key, suffix) : std::string();
 }
 
 // A declared shape: its declaration, and the URLs of its mesh and impostor where served.
