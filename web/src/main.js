@@ -66,8 +66,7 @@ async function start() {
     // ?occlusion=1 or 0 turns occlusion culling on or off; by default it is on where the GL
     // renders on the CPU.
     const occlusionParam = params.get('occlusion');
-    const software = isSoftwareRenderer(world.renderer);
-    const occlusion = occlusionParam === null ? software : occlusionParam !== '0';
+    const occlusion = occlusionParam === null ? isSoftwareRenderer(world.renderer) : occlusionParam !== '0';
     const occlusionStatus = occlusion ? `occlusion on${occlusionParam === null ? ' (software GL)' : ''}` : 'occlusion off';
     const streamer = new Streamer({
         scene,

@@ -107,13 +107,23 @@ export async function imageDifference(page, a, b) {
     );
 }
 
-// A browser test on a scene of its own: `writeScene(folder)` writes it into a fresh folder,
-// `hexlod serve` serves it with small impostors baked into a store in that folder (a quick
-// bake that leaves nothing behind), chromium opens at `viewport`, and
-// `body({base, page, pageErrors})` runs; then both are closed and the folder removed.
-export async function withServedScene(binary, writeScene, { impostorGrid, viewport }, body) {
+// What ctest gives a browser test: the hexlod executable, the configs folder (grammars,
+// species) and the folder for screenshots.
+export const testBinary = process.env.HEXLOD_BINARY;
+export const configsDir = process.env.HEXLOD_CONFIGS_DIR ?? path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'configs');
+export const artifactsDir = process.env.HEXLOD_WEB_ARTIFACTS ?? path.join(os.tmpdir(), 'hexlod-web-artifacts');
+
+// A browser test on a scene of its own (`scene`, a scene config object): written into a fresh
+// folder, served by `hexlod serve` with small impostors baked into a store in that folder (a
+// quick bake that leaves nothing behind), chromium opened at `viewport`, and
+// `body({base, page, pageErrors})` run; then both are closed and the folder removed.
+export async function withServedScene(scene, { impostorGrid, viewport }, body) {
+    if (!testBinary) throw new Error('HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
+    fs.mkdirSync(artifactsDir, { recursive: true });
     const folder = fs.mkdtempSync(path.join(os.tmpdir(), 'hexlod-browser-'));
-    const server = startServer(binary, writeScene(folder), [
+    const file = path.join(folder, 'scene.json');
+    fs.writeFileSync(file, JSON.stringify(scene, null, 1));
+    const server = startServer(testBinary, file, [
         '--impostor-store', path.join(folder, 'impostors'), '--impostor-grid', String(impostorGrid), '--impostor-res', '16',
     ]);
     let browser;

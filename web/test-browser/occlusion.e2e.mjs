@@ -5,33 +5,22 @@
 // out is behind the base volumes). Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import test from 'node:test';
-import { fileURLToPath } from 'node:url';
 
-import { imageDifference, settledView, withServedScene } from './harness.mjs';
+import { artifactsDir as artifacts, configsDir as configs, imageDifference, settledView, withServedScene } from './harness.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const binary = process.env.HEXLOD_BINARY;
-const configs = process.env.HEXLOD_CONFIGS_DIR ?? path.resolve(here, '..', '..', 'configs');
-const artifacts = process.env.HEXLOD_WEB_ARTIFACTS ?? path.join(os.tmpdir(), 'hexlod-web-artifacts');
 const width = 640, height = 360;
 
 // Rows of three-to-five-storey houses, no trees, the shipped LOD budget: at eye level the
 // first row hides most of the rest.
-function writeScene(folder) {
-    const scene = {
-        name: 'occlusion-test', seed: 11, cell_size: 80,
-        grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
-        buildings: [{ source: 'procedural', count: 48, block_size: 50, street_width: 10,
-            districts: [{ grammar: 'residential', share: 1, floors: [3, 5], lot: [14, 16] }] }],
-        lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
-    };
-    const file = path.join(folder, 'scene.json');
-    fs.writeFileSync(file, JSON.stringify(scene, null, 1));
-    return file;
-}
+const scene = {
+    name: 'occlusion-test', seed: 11, cell_size: 80,
+    grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
+    buildings: [{ source: 'procedural', count: 48, block_size: 50, street_width: 10,
+        districts: [{ grammar: 'residential', share: 1, floors: [3, 5], lot: [14, 16] }] }],
+    lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
+};
 
 // Of every extruded set loaded, the building reaching farthest south: its footprint's bounds
 // (world x, y) and its base.
@@ -58,9 +47,7 @@ async function southernmostBuilding(page) {
 }
 
 test('occlusion culling leaves out hidden terminals and changes no visible pixel', { timeout: 240000 }, async () => {
-    assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
-    fs.mkdirSync(artifacts, { recursive: true });
-    await withServedScene(binary, writeScene, { impostorGrid: 4, viewport: { width, height } }, async ({ base, page, pageErrors }) => {
+    await withServedScene(scene, { impostorGrid: 4, viewport: { width, height } }, async ({ base, page, pageErrors }) => {
         // Eye level, 15 m south of the southernmost house, looking north past its side (the
         // opening view, over the whole city, loads every extruded set).
         await settledView(page, `${base}?aa=0&occlusion=0`);

@@ -9,33 +9,21 @@
 // their new values and the far trees are billboards of those, changing the image; and at eye
 // level in a small viewport the ground is drawn. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
-import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import test from 'node:test';
-import { fileURLToPath } from 'node:url';
 
-import { withServedScene } from './harness.mjs';
+import { artifactsDir as artifacts, configsDir as configs, withServedScene } from './harness.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const binary = process.env.HEXLOD_BINARY;
-const configs = process.env.HEXLOD_CONFIGS_DIR ?? path.resolve(here, '..', '..', 'configs');
-const artifacts = process.env.HEXLOD_WEB_ARTIFACTS ?? path.join(os.tmpdir(), 'hexlod-web-artifacts');
 const width = 800, height = 450;
 
-function writeScene(folder) {
-    const scene = {
-        name: 'tree-test', seed: 3, cell_size: 60,
-        grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
-        buildings: [{ source: 'procedural', count: 4, block_size: 60, street_width: 12, park_share: 0.5,
-            districts: [{ grammar: 'residential', share: 1, floors: [2, 3], lot: [16, 18] }] }],
-        trees: { count: 40, species: path.join(configs, 'species.json') },
-        lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0], tree_geometric_error: 1 },
-    };
-    const file = path.join(folder, 'scene.json');
-    fs.writeFileSync(file, JSON.stringify(scene, null, 1));
-    return file;
-}
+const scene = {
+    name: 'tree-test', seed: 3, cell_size: 60,
+    grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
+    buildings: [{ source: 'procedural', count: 4, block_size: 60, street_width: 12, park_share: 0.5,
+        districts: [{ grammar: 'residential', share: 1, floors: [2, 3], lot: [16, 18] }] }],
+    trees: { count: 40, species: path.join(configs, 'species.json') },
+    lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0], tree_geometric_error: 1 },
+};
 
 // Per image pair, decoded in the page: the pixels each of two images changes against a third
 // (more than 24 of 255 in a channel), the overlap of those masks, and PSNR between images.
@@ -67,9 +55,7 @@ async function compare(page, shots) {
 }
 
 test('far trees are billboards that stand for their trees, and edited trees get species of their own', { timeout: 240000 }, async () => {
-    assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
-    fs.mkdirSync(artifacts, { recursive: true });
-    await withServedScene(binary, writeScene, { impostorGrid: 6, viewport: { width, height } }, async ({ base, page, pageErrors }) => {
+    await withServedScene(scene, { impostorGrid: 6, viewport: { width, height } }, async ({ base, page, pageErrors }) => {
         // South of the park at eye height, 150 m from its nearest cell and farther; by distance,
         // trees are billboards from 195 m at this viewport.
         const near = '0,-300,4,90,0', far = '0,-400,4,90,0';

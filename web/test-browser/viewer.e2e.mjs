@@ -5,39 +5,27 @@
 // changed and that the stats show the batch's new version; a refused edit must show its reason.
 // Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
-import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import test from 'node:test';
-import { fileURLToPath } from 'node:url';
 
-import { withServedScene } from './harness.mjs';
+import { artifactsDir as artifacts, configsDir as configs, withServedScene } from './harness.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const binary = process.env.HEXLOD_BINARY;
-const configs = process.env.HEXLOD_CONFIGS_DIR ?? path.resolve(here, '..', '..', 'configs');
-const artifacts = process.env.HEXLOD_WEB_ARTIFACTS ?? path.join(os.tmpdir(), 'hexlod-web-artifacts');
 
 // About 30 buildings of both grammars, no trees, a coarse LOD budget: few terminals, so a frame
 // stays well under a second on SwiftShader.
-function writeScene(folder) {
-    const scene = {
-        name: 'browser-test', seed: 5, cell_size: 70,
-        grammars: {
-            business: { file: path.join(configs, 'grammars', 'business.grammar') },
-            residential: { file: path.join(configs, 'grammars', 'residential.grammar') },
-        },
-        buildings: [{ source: 'procedural', count: 30, block_size: 60, street_width: 12,
-            districts: [
-                { grammar: 'business', share: 0.15, floors: [6, 9], lot: [24, 24] },
-                { grammar: 'residential', share: 0.85, floors: [2, 4], lot: [16, 18] },
-            ] }],
-        lod: { max_screen_space_error: 12, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
-    };
-    const file = path.join(folder, 'scene.json');
-    fs.writeFileSync(file, JSON.stringify(scene, null, 1));
-    return file;
-}
+const scene = {
+    name: 'browser-test', seed: 5, cell_size: 70,
+    grammars: {
+        business: { file: path.join(configs, 'grammars', 'business.grammar') },
+        residential: { file: path.join(configs, 'grammars', 'residential.grammar') },
+    },
+    buildings: [{ source: 'procedural', count: 30, block_size: 60, street_width: 12,
+        districts: [
+            { grammar: 'business', share: 0.15, floors: [6, 9], lot: [24, 24] },
+            { grammar: 'residential', share: 0.85, floors: [2, 4], lot: [16, 18] },
+        ] }],
+    lod: { max_screen_space_error: 12, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
+};
 
 // Share of pixels in `rect` whose colour moved by more than 24 (of 255) in any channel, decoded
 // in the page (no PNG library needed here).
@@ -62,9 +50,7 @@ async function changedShare(page, before, after, rect) {
 }
 
 test('the viewer loads, moves, selects a building, tunes it and shows the edit', { timeout: 240000 }, async () => {
-    assert.ok(binary, 'HEXLOD_BINARY must name the hexlod executable (ctest sets it)');
-    fs.mkdirSync(artifacts, { recursive: true });
-    await withServedScene(binary, writeScene, { impostorGrid: 4, viewport: { width: 800, height: 450 } }, async ({ base, page, pageErrors }) => {
+    await withServedScene(scene, { impostorGrid: 4, viewport: { width: 800, height: 450 } }, async ({ base, page, pageErrors }) => {
         const shot = (name) => page.screenshot({ path: path.join(artifacts, name), timeout: 60000 });
         const stats = () => page.locator('#stats').textContent();
 

@@ -125,8 +125,9 @@ export function classifyTerminal(corner, axes, w, h, d, distances, impostors, vi
     if (inFront < -d) return 0;
     // The scope box's half diagonal, doubled: a mesh may reach past its scope (a balcony's
     // depth ratio is above 1), and an impostor quad covers the mesh's bounds.
-    if (view && outsideView(view, cx, cy, cz, Math.hypot(w, h, d) + slack)) return 0;
-    if (occlusion && occlusion.hidesSphere(cx, cy, cz, Math.hypot(w, h, d))) return OCCLUDED;
+    const radius = Math.hypot(w, h, d);
+    if (view && outsideView(view, cx, cy, cz, radius + slack)) return 0;
+    if (occlusion && occlusion.hidesSphere(cx, cy, cz, radius)) return OCCLUDED;
     const distance = Math.sqrt(cx * cx + cy * cy + cz * cz);
     if (!impostors) return distance - slack >= coarseReach ? COARSE : 4;
     return distance >= distances.lod2 ? 2 : distance >= distances.lod3 ? 3 : 4;
