@@ -29,8 +29,8 @@ nlohmann::json json3(const glm::vec3& v) {
     return {v.x, v.y, v.z};
 }
 
-// Every declared shape's mesh, and the coarse mesh of each tree part that has one (the meshes
-// the native renderer's cull pass picks between); shapes that share a mesh share its bytes.
+// Every declared shape's mesh, and the coarse mesh of each shape that has one (the meshes the
+// native renderer's cull pass picks between); shapes that share a mesh share its bytes.
 void addMeshes(const cells::BatchCatalog& catalog, const render::TerminalMeshLibrary& library,
                server::ShapeAssets& assets) {
     std::map<const render::TerminalMesh*, AssetBytes> encoded;
@@ -50,7 +50,7 @@ void addMeshes(const cells::BatchCatalog& catalog, const render::TerminalMeshLib
         }
     }
     const size_t fine = encoded.size();
-    for (const lod::CoarseMesh& coarse : lod::treeCoarseMeshes(catalog, library)) {
+    for (const lod::CoarseMesh& coarse : lod::coarseMeshes(catalog, library)) {
         const auto [g, s] = globalShapes.at(coarse.shape);
         assets.meshes[g][s]->coarse =
             server::CoarseMeshAsset{coarse.mesh->contentHash, glb(*coarse.mesh), array3(coarse.deviation),
@@ -60,8 +60,7 @@ void addMeshes(const cells::BatchCatalog& catalog, const render::TerminalMeshLib
     const uint32_t grammars = library.grammarCount();
     assets.notes.push_back("terminal meshes (glTF): " + std::to_string(fine) + " distinct meshes for " +
                            std::to_string(grammars) + (grammars == 1 ? " grammar" : " grammars") +
-                           ", unit scope space; " + std::to_string(encoded.size() - fine) +
-                           " coarse meshes of tree parts");
+                           ", unit scope space; " + std::to_string(encoded.size() - fine) + " coarse meshes");
 }
 
 // The normal-and-depth view as an 8-bit image: n * 0.5 + 0.5 and depth * 0.5 + 0.5, so an

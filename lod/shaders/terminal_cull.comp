@@ -53,7 +53,7 @@ void main() {
     }
     // Small on screen, a LOD4 terminal may draw its shape's coarser mesh, a shape of its own.
     if (lod == HEXLOD_LOD4) {
-        shape = meshShape(t, shape, info.z != 0u, coarse[shape], sphere, frame);
+        shape = meshShape(t, shape, coarse[shape], sphere, frame);
         info = shapes[shape];
     }
     // Draw lists carry the camera-relative corner, the global shape id and, in place of the

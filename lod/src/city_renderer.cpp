@@ -167,7 +167,7 @@ bool CityRenderer::init(std::string& error) {
 
     // The reference draws every terminal's full mesh; only the LOD system may draw a coarser one.
     const std::vector<CoarseMesh> coarse =
-        options_.mode == RenderMode::Lod ? treeCoarseMeshes(catalog_, meshes_) : std::vector<CoarseMesh>{};
+        options_.mode == RenderMode::Lod ? coarseMeshes(catalog_, meshes_) : std::vector<CoarseMesh>{};
     shapes_.upload(meshes_, coarse);
     coarseNote_ = describeCoarseMeshes(coarse, shapes_);
     ground_.upload(catalog_.scene().roads, catalog_.cellOrigin(catalog_.index().cells().empty()

@@ -1,8 +1,9 @@
-// Coarser meshes for the tree grammars' shapes.
+// Coarser meshes for the shapes whose generators have a coarser level.
 #include "hexlod/lod/coarse_meshes.h"
 #include "hexlod/render/mesh_deviation.h"
 #include "hexlod/render/procedural_meshes.h"
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -11,21 +12,23 @@
 
 namespace hexlod::lod {
 
-std::vector<CoarseMesh> treeCoarseMeshes(const cells::BatchCatalog& catalog,
-                                         const render::TerminalMeshLibrary& meshes) {
+std::vector<CoarseMesh> coarseMeshes(const cells::BatchCatalog& catalog,
+                                     const render::TerminalMeshLibrary& meshes) {
     std::vector<CoarseMesh> coarse;
     std::map<const render::TerminalMesh*, CoarseMesh> byMesh; // mesh == null: none
     uint32_t base = 0;
     for (uint32_t g = 0; g < meshes.grammarCount(); base += uint32_t(meshes.shapeCount(g++))) {
-        if (g < catalog.index().buildingGrammarCount()) continue;
         for (uint16_t s = 0; s < meshes.shapeCount(g); ++s) {
             const render::TerminalMesh& fine = meshes.mesh(g, s);
             auto [it, inserted] = byMesh.try_emplace(&fine);
             if (inserted) {
                 std::optional<render::TerminalMesh> mesh =
                     render::buildCoarserProceduralMesh(catalog.grammar(g).grammar.shapes.at(s), fine);
-                if (mesh) {
-                    it->second.deviation = render::meshDeviation(fine, *mesh);
+                const glm::vec3 deviation = mesh ? render::meshDeviation(fine, *mesh) : glm::vec3(0.0f);
+                // A level with nothing like some part of the mesh (a colour it dropped) would never
+                // be small enough on screen: it is left out.
+                if (mesh && std::isfinite(deviation.x + deviation.y + deviation.z)) {
+                    it->second.deviation = deviation;
                     it->second.mesh = std::make_shared<const render::TerminalMesh>(std::move(*mesh));
                 }
             }

@@ -36,10 +36,10 @@ CullResult cullOnCpu(const CullInputs& inputs) {
                 ++result.occluded;
                 continue;
             }
-            const uint32_t drawn = lod == HEXLOD_LOD4 && !inputs.shapeCoarse.empty()
-                                       ? shared::meshShape(t, shape, inputs.shapeImpostor[shape] != 0,
-                                                           inputs.shapeCoarse[shape], sphere, inputs.frame)
-                                       : shape;
+            const uint32_t drawn =
+                lod == HEXLOD_LOD4 && !inputs.shapeCoarse.empty()
+                    ? shared::meshShape(t, shape, inputs.shapeCoarse[shape], sphere, inputs.frame)
+                    : shape;
             t.position = corner;
             t.building = std::bit_cast<uint32_t>(lod == HEXLOD_LOD2 ? -1.0f : transition);
             t.shapeAndDepth = (t.shapeAndDepth & 0xffff0000u) | drawn;

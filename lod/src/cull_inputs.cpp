@@ -66,6 +66,9 @@ CullPages selectCullPages(const CullInputs& inputs) {
     DrawListLayout& layout = out.layout;
     layout.base.assign(inputs.shapeCount, 0);
     layout.capacity.assign(inputs.shapeCount, 0);
+    // Per shape, its terminals in the pages that may hold LOD4 entries of a shape with an
+    // impostor: the capacity of its coarse shape's own lists.
+    std::vector<uint32_t> withinLod4(inputs.shapeCount, 0);
     for (uint32_t b = 0; b < inputs.batches.size(); ++b) {
         const CullBatchInput& batch = inputs.batches[b];
         const uint32_t records = uint32_t(batch.set->records.size());
@@ -92,23 +95,29 @@ CullPages selectCullPages(const CullInputs& inputs) {
             }
             out.pages.emplace_back(b, batch.pages ? (*batch.pages)[page] : first, count, 0u);
             out.terminals += count;
+            const bool lod4 =
+                !batch.pageSpheres || pageMayHoldLod4((*batch.pageSpheres)[page], origin, inputs.frame);
             for (uint32_t r = first; r < first + count;) {
                 while (r >= shapeEnd && shape + 1 < perShape.size()) shapeEnd += perShape[++shape];
                 if (r >= shapeEnd) shapeEnd = records; // counts short of the records: the last shape
                 const uint32_t run = std::min(shapeEnd, first + count) - r;
                 layout.capacity[batch.shapeBase + shape] += run;
+                if (lod4) withinLod4[batch.shapeBase + shape] += run;
                 r += run;
             }
         }
     }
+    // A coarse shape has no records of its own; each terminal of the shape it serves is drawn
+    // with one of the two meshes. Where that shape has no impostor, the coarse entries fill
+    // its lists from the back, where impostor entries would go. Where it has one, they get
+    // lists of their own, as long as the served shape's terminals within LOD4's distance.
+    for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s)
+        if (inputs.shapeCoarse[s].w >= 0.0f && inputs.shapeImpostor.at(s))
+            layout.capacity.at(uint32_t(inputs.shapeCoarse[s].w)) = withinLod4[s];
     for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
         layout.base[s] = uint32_t(layout.total);
         layout.total += layout.capacity[s];
     }
-    // A coarse shape has no records of its own: it shares the lists of the shape it serves,
-    // whose terminals are each drawn with one of the two meshes. The coarse shape's entries
-    // fill the lists from the back, where impostor entries would go: a shape with an impostor
-    // never draws its coarse mesh (meshShape).
     for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s) {
         if (inputs.shapeCoarse[s].w < 0.0f || inputs.shapeImpostor.at(s)) continue;
         const uint32_t coarse = uint32_t(inputs.shapeCoarse[s].w);

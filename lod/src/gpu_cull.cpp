@@ -85,9 +85,11 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
         const MeshDrawInfo& mesh = meshes[s];
         meshInfo[s] = glm::uvec4(mesh.indexCount, mesh.firstIndex, uint32_t(mesh.baseVertex), 0u);
     }
-    // A coarse shape has no impostor; its z says that its entries fill its lists from the back.
-    for (const glm::vec4& c : coarse)
-        if (c.w >= 0.0f) shapes.at(uint32_t(c.w)).z = HEXLOD_COARSE_SHAPE;
+    // The coarse shape of a shape without impostor fills that shape's lists from the back (its
+    // z says so); that of a shape with one has lists of its own (DrawListLayout).
+    for (uint32_t s = 0; s < coarse.size(); ++s)
+        if (coarse[s].w >= 0.0f && shapes.at(s).z == 0u)
+            shapes.at(uint32_t(coarse[s].w)).z = HEXLOD_COARSE_SHAPE;
 
     auto upload = [this](BufferIndex index, const void* data, uint64_t bytes) {
         reserve(index, bytes);

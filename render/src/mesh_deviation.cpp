@@ -1,25 +1,48 @@
-// Sampled Hausdorff distance between two terminal meshes (mesh_deviation.h).
+// Sampled, appearance-aware Hausdorff distance between two terminal meshes (mesh_deviation.h).
 #include "hexlod/render/mesh_deviation.h"
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
 namespace hexlod::render {
 namespace {
 
+// A sample matches only surface that looks the same: the same colour, within this much per
+// linear channel (about 5 levels of 255), and a shading normal within about 37 degrees. A
+// generator's coarser level may drop a mullion or merge two materials; plain closest points
+// would find the glass right behind the mullion and call that a few millimetres.
+constexpr float kColourTolerance = 0.02f;
+constexpr float kNormalCosine = 0.8f;
+
 struct Triangle {
     glm::vec3 a, b, c;
+    glm::vec4 colour; // the mean of its vertices' colours
+    glm::vec3 normal; // the mean of its vertices' shading normals, unit length (zero if they cancel)
 };
 
 std::vector<Triangle> trianglesOf(const TerminalMesh& mesh, const glm::vec3& scale) {
     std::vector<Triangle> triangles;
-    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-        triangles.push_back({scale * mesh.vertices.at(mesh.indices[i]).position,
-                             scale * mesh.vertices.at(mesh.indices[i + 1]).position,
-                             scale * mesh.vertices.at(mesh.indices[i + 2]).position});
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const MeshVertex& a = mesh.vertices.at(mesh.indices[i]);
+        const MeshVertex& b = mesh.vertices.at(mesh.indices[i + 1]);
+        const MeshVertex& c = mesh.vertices.at(mesh.indices[i + 2]);
+        const glm::vec3 normal = a.normal + b.normal + c.normal;
+        const float length = glm::length(normal);
+        triangles.push_back({scale * a.position, scale * b.position, scale * c.position,
+                             (unpackRgba(a.rgba) + unpackRgba(b.rgba) + unpackRgba(c.rgba)) / 3.0f,
+                             length > 0.0f ? normal / length : glm::vec3(0.0f)});
+    }
     return triangles;
+}
+
+bool looksAlike(const Triangle& x, const Triangle& y) {
+    const glm::vec4 d = glm::abs(x.colour - y.colour);
+    return std::max(std::max(d.r, d.g), std::max(d.b, d.a)) <= kColourTolerance &&
+           glm::dot(x.normal, y.normal) >= kNormalCosine;
 }
 
 // The closest point of triangle abc to p, by the region of the triangle p projects into
@@ -47,7 +70,8 @@ glm::vec3 closestPoint(const glm::vec3& p, const Triangle& t) {
     return t.a + ab * (vb / denominator) + ac * (vc / denominator);
 }
 
-// The largest per-axis |difference| from each sample of `from` to its closest point on `to`.
+// The largest per-axis |difference| from each sample of `from` to its closest point on the
+// triangles of `to` that look like the sample's own; infinite when none does.
 glm::vec3 oneWay(const std::vector<Triangle>& from, const std::vector<Triangle>& to) {
     glm::vec3 worst(0.0f);
     for (const Triangle& t : from) {
@@ -62,10 +86,12 @@ glm::vec3 oneWay(const std::vector<Triangle>& from, const std::vector<Triangle>&
             float best = std::numeric_limits<float>::infinity();
             glm::vec3 offset(0.0f);
             for (const Triangle& candidate : to) {
+                if (!looksAlike(t, candidate)) continue;
                 const glm::vec3 d = closestPoint(p, candidate) - p;
                 const float squared = glm::dot(d, d);
                 if (squared < best) best = squared, offset = d;
             }
+            if (!std::isfinite(best)) return glm::vec3(std::numeric_limits<float>::infinity());
             worst = glm::max(worst, glm::abs(offset));
         }
     }

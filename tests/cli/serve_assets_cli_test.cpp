@@ -20,6 +20,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <fstream>
 #include <map>
@@ -252,25 +253,27 @@ TEST_F(ServeAssets, EveryShapeMeshDecodesToTheLibraryMesh) {
     }
 }
 
-// Tree parts, and only they, carry a coarse mesh: the generator's coarser level with the
-// deviation the native renderer decides with, served as its own .glb.
-TEST_F(ServeAssets, TreePartsCarryTheirCoarseMesh) {
+// Every shape whose generator has a coarser level that keeps its look (a finite deviation)
+// carries a coarse mesh, facade parts and tree parts alike: that level with the deviation the
+// native renderer decides with, served as its own .glb.
+TEST_F(ServeAssets, ShapesCarryTheirCoarseMesh) {
     std::vector<const grammar::CompiledGrammar*> grammars;
     for (size_t g = 0; g < (*summary)["grammars"].size(); ++g) grammars.push_back(&grammarAt(g));
     const render::TerminalMeshLibrary library(grammars);
-    size_t coarseShapes = 0;
+    size_t coarseTreeParts = 0, coarseFacadeParts = 0;
     for (size_t g = 0; g < grammars.size(); ++g) {
         const bool tree = (*summary)["grammars"][g]["kind"] == "tree";
         for (size_t s = 0; s < library.shapeCount(uint32_t(g)); ++s) {
             const Json& shape = (*summary)["grammars"][g]["shapes"][s];
             const render::TerminalMesh& fine = library.mesh(uint32_t(g), uint16_t(s));
             const std::optional<render::TerminalMesh> coarse =
-                tree ? render::buildCoarserProceduralMesh(grammars[g]->shapes.at(s), fine) : std::nullopt;
-            ASSERT_EQ(shape["coarse_mesh"].is_null(), !coarse) << shape["name"];
-            if (!coarse) continue;
-            ++coarseShapes;
+                render::buildCoarserProceduralMesh(grammars[g]->shapes.at(s), fine);
+            const glm::vec3 deviation = coarse ? render::meshDeviation(fine, *coarse) : glm::vec3(0.0f);
+            const bool served = coarse && std::isfinite(deviation.x + deviation.y + deviation.z);
+            ASSERT_EQ(shape["coarse_mesh"].is_null(), !served) << shape["name"];
+            if (!served) continue;
+            ++(tree ? coarseTreeParts : coarseFacadeParts);
             EXPECT_EQ(shape["coarse_mesh"]["triangles"], coarse->triangleCount());
-            const glm::vec3 deviation = render::meshDeviation(fine, *coarse);
             for (int a = 0; a < 3; ++a)
                 EXPECT_EQ(shape["coarse_mesh"]["deviation"][a].get<float>(), deviation[a]) << shape["name"];
             tinygltf::Model model;
@@ -281,7 +284,8 @@ TEST_F(ServeAssets, TreePartsCarryTheirCoarseMesh) {
             EXPECT_LT(indices.count, 3 * fine.triangleCount()) << shape["name"];
         }
     }
-    EXPECT_GT(coarseShapes, 0u) << "the scene's trees have parts with a coarser level";
+    EXPECT_GT(coarseTreeParts, 0u) << "the scene's trees have parts with a coarser level";
+    EXPECT_GT(coarseFacadeParts, 0u) << "the scene's facades have parts with a coarser level";
 }
 
 TEST_F(ServeAssets, PngsAreTheAtlasAndAgreeWithTheStoredExr) {

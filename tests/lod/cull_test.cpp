@@ -4,12 +4,14 @@
 
 #include "hexlod/lod/cpu_cull.h"
 #include "hexlod/lod/gpu_cull.h"
+#include "hexlod/lod/page_bounds.h"
 #include "hexlod/lod/terminal_arena.h"
 #include "hexlod/render/gl_api.h"
 
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <tuple>
@@ -81,13 +83,13 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
     std::vector<TerminalSet> sets;
     for (int b = 0; b < 12; ++b)
         sets.push_back(randomSet(random, 1000 + 937 * b, shapesPerGrammar, 150.0f, b % 3 != 0));
-    uint64_t skipped = 0, occludedPages = 0, fine = 0, coarse = 0;
+    uint64_t skipped = 0, occludedPages = 0, fine = 0, coarse = 0, coarseWithImpostor = 0, listsSaved = 0;
     for (int trial = 0; trial < 6; ++trial) {
         arena.beginFrame(trial);
         CullInputs inputs;
         // Two coarse shapes after the grammars' (CoarseMesh): one serves shape 3, which has no
-        // impostor; the other serves shape 8, which has one, so it never draws (a shape with an
-        // impostor switches to it instead).
+        // impostor; the other serves shape 8, which has one, so only its LOD4 terminals may
+        // draw it.
         const uint32_t coarse3 = 2 * shapesPerGrammar, coarse8 = coarse3 + 1;
         inputs.shapeCount = 2 * shapesPerGrammar + 2;
         inputs.shapeImpostor.assign(inputs.shapeCount, 1);
@@ -115,8 +117,10 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         scene::LodProfile profile;
         profile.maxScreenSpaceError = 1.0 + trial;
         inputs.frame = makeCullFrame(frustum, profile, 0.3 + 0.4 * trial, 720, 0.2, true);
-        // The reference's frames (trial 0) draw every mesh in full.
-        if (trial > 0) setCoarseMeshes(inputs.frame, profile, 0.3 + 0.4 * trial, 720);
+        // The reference's frames (the last trial) draw every mesh in full. The first trial's
+        // narrow view puts LOD3's distance far enough for a shape with an impostor to draw
+        // its coarse mesh.
+        if (trial != 5) setCoarseMeshes(inputs.frame, profile, 0.3 + 0.4 * trial, 720);
         // Odd trials test occlusion too, against a wall over the screen's left half at 40 to
         // 160 m (each tile's farthest depth) and open sky on the right.
         const uint32_t columns = 80, rows = 45;
@@ -157,7 +161,7 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
                 std::sort(ids.begin(), ids.end());
                 return ids;
             };
-            // A coarse shape's entries fill the lists it shares from the back.
+            // The coarse shape of a shape without impostor fills the lists it shares from the back.
             const uint32_t lod4First =
                 s == coarse3 ? layout.base[s] + layout.capacity[s] - counters[s].x : layout.base[s];
             EXPECT_EQ(gpuSorted(lod4First, counters[s].x), cpuSorted(reference.lod4[s], 0)) << "shape " << s;
@@ -173,19 +177,24 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
                 EXPECT_EQ(counters[s].y, 0u);
             }
         }
-        // A coarse shape shares the lists of the shape it serves and adds nothing to them;
-        // only LOD4 entries move there.
+        // The coarse shape of a shape without impostor shares the lists of the shape it serves
+        // and adds nothing to them; that of a shape with one has lists of its own, as long as
+        // shape 8's terminals in the pages within LOD4's distance. Only LOD4 entries go there.
         EXPECT_EQ(layout.base[coarse3], layout.base[3]);
         EXPECT_EQ(layout.capacity[coarse3], layout.capacity[3]);
-        EXPECT_EQ(layout.capacity[coarse8], 0u);
-        EXPECT_EQ(layout.total, layout.base[coarse3 - 1] + layout.capacity[coarse3 - 1]);
+        EXPECT_LE(layout.capacity[coarse8], layout.capacity[8]);
+        EXPECT_EQ(layout.base[coarse8], layout.base[coarse3 - 1] + layout.capacity[coarse3 - 1]);
+        EXPECT_EQ(layout.total, layout.base[coarse8] + layout.capacity[coarse8]);
         EXPECT_LE(counters[3].x + counters[coarse3].x, layout.capacity[3]);
-        EXPECT_EQ(counters[coarse3].y + counters[coarse8].x + counters[coarse8].y, 0u);
-        if (trial == 0) {
-            EXPECT_EQ(counters[coarse3].x, 0u);
+        EXPECT_LE(counters[coarse8].x, layout.capacity[coarse8]);
+        EXPECT_EQ(counters[coarse3].y + counters[coarse8].y, 0u);
+        if (trial == 5) {
+            EXPECT_EQ(counters[coarse3].x + counters[coarse8].x, 0u);
         }
         fine += counters[3].x;
         coarse += counters[coarse3].x;
+        coarseWithImpostor += counters[coarse8].x;
+        listsSaved += layout.capacity[8] - layout.capacity[coarse8];
         // Some of everything: the trial would prove little if all were culled or all LOD4.
         EXPECT_GT(visible, 0u);
         EXPECT_GT(reference.culled, 0u);
@@ -208,9 +217,12 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
     // still match the reference, which skips none.
     EXPECT_GT(skipped, 0u);
     EXPECT_GT(occludedPages, 0u);
-    // Near terminals kept their shape's mesh and far ones took the coarse one.
+    // Near terminals kept their shape's mesh and far ones took the coarse one, with or without
+    // an impostor; pages beyond LOD4's distance reserved no room for coarse entries.
     EXPECT_GT(fine, 0u);
     EXPECT_GT(coarse, 0u);
+    EXPECT_GT(coarseWithImpostor, 0u);
+    EXPECT_GT(listsSaved, 0u);
 }
 
 // Hand-placed terminals: a 2 m x 2 m facade tile facing -y at the origin of its cell.
@@ -267,12 +279,12 @@ TEST(CullRulesTest, ACoarseMeshServesFromWhereItsDeviationProjectsUnderTheBound)
     const glm::vec3 deviation(0.01f, 0.01f, 0.1f);          // 2 cm, 2 cm and 5 cm on this tile
     scene::LodProfile profile;
     profile.maxScreenSpaceError = 2.0;
-    // Which shape the tile draws with from `distance` in front of its centre: 0, its own mesh; 1,
-    // the coarse one; -1, none.
-    const auto drawnShape = [&](double distance, bool coarseMeshes) {
+    // Which shape the tile draws with at LOD4 from `distance` in front of its centre: 0, its own
+    // mesh; 1, the coarse one; -1, none (an impostor, or culled).
+    const auto drawnShape = [&](double distance, bool coarseMeshes, uint8_t impostor = 0) {
         CullInputs inputs;
         inputs.shapeCount = 2;
-        inputs.shapeImpostor = {0, 0}; // no impostor: LOD4 at any distance
+        inputs.shapeImpostor = {impostor, 0}; // no impostor: LOD4 at any distance
         inputs.shapeCoarse = {glm::vec4(deviation, 1.0f), glm::vec4(0.0f, 0.0f, 0.0f, -1.0f)};
         inputs.camera = glm::dvec3(1.0, -distance, 1.0);
         inputs.batches.push_back({&tile.set, nullptr, glm::dvec3(0.0), 0});
@@ -281,7 +293,6 @@ TEST(CullRulesTest, ACoarseMeshServesFromWhereItsDeviationProjectsUnderTheBound)
         inputs.frame = makeCullFrame(frustum, profile, 1.0, 720, 0.2, true);
         if (coarseMeshes) setCoarseMeshes(inputs.frame, profile, 1.0, 720);
         const CullResult result = cullOnCpu(inputs);
-        EXPECT_EQ(result.terminalsPerLod[4], 1u);
         return !result.lod4[1].empty() ? 1 : !result.lod4[0].empty() ? 0 : -1;
     };
     const double reach =
@@ -292,6 +303,28 @@ TEST(CullRulesTest, ACoarseMeshServesFromWhereItsDeviationProjectsUnderTheBound)
     EXPECT_EQ(drawnShape(100.0 * reach, true), 1);
     // Without coarse meshes in the frame (the all-LOD4 reference) the tile keeps its mesh.
     EXPECT_EQ(drawnShape(1.05 * reach, false), 0);
+    // With an impostor, the coarse mesh serves from the same distance to LOD3's, and the
+    // impostor beyond.
+    const double lod3 = lodDistance(profile.geometricError[3], profile, 1.0, 720);
+    ASSERT_GT(lod3, 2.0 * reach);
+    EXPECT_EQ(drawnShape(0.95 * reach, true, 1), 0);
+    EXPECT_EQ(drawnShape(1.05 * reach, true, 1), 1);
+    EXPECT_EQ(drawnShape(0.95 * lod3, true, 1), 1);
+    EXPECT_EQ(drawnShape(1.05 * lod3, true, 1), -1);
+}
+
+TEST(CullRulesTest, APageHoldsNoLod4EntryOnlyWhenWhollyBeyondLod3sDistance) {
+    shared::CullFrame frame{};
+    frame.lodDistance = glm::vec4(100.0f * 100.0f, 400.0f * 400.0f, 0.15f, 1.0f);
+    const glm::vec3 origin(0.0f, 1000.0f, 0.0f); // the batch's cell origin minus the camera
+    // A sphere of radius 10 centred 105 m away reaches to 95 m; centred 111 m away, to 101 m.
+    EXPECT_TRUE(pageMayHoldLod4(glm::vec4(0.0f, -895.0f, 0.0f, 10.0f), origin, frame));
+    EXPECT_FALSE(pageMayHoldLod4(glm::vec4(0.0f, -889.0f, 0.0f, 10.0f), origin, frame));
+    // The camera inside the sphere, an unbounded page, and a frame without LOD distances.
+    EXPECT_TRUE(pageMayHoldLod4(glm::vec4(0.0f, -1000.0f, 0.0f, 5.0f), origin, frame));
+    EXPECT_TRUE(pageMayHoldLod4(glm::vec4(0.0f, 0.0f, 0.0f, INFINITY), origin, frame));
+    frame.lodDistance.w = 0.0f;
+    EXPECT_TRUE(pageMayHoldLod4(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), origin, frame));
 }
 
 TEST_F(CullTest, ArenaEvictsTheLeastRecentlyDrawnWhenFull) {

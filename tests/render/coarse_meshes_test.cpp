@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 namespace hexlod::render {
 namespace {
@@ -60,6 +61,43 @@ TEST(MeshDeviation, AMeshWithoutTrianglesIsInfinitelyFarFromOneWith) {
     EXPECT_EQ(meshDeviation(empty, empty), glm::vec3(0.0f));
 }
 
+// Two triangles side by side in the plane t = 0: [0, 0.5] x [0, 1] of colour `left` and
+// [0.5, 1] x [0, 1] of colour `right`, with normal `normal`.
+TerminalMesh twoPanels(uint32_t left, uint32_t right, glm::vec3 normal = glm::vec3(0, 0, 1)) {
+    TerminalMesh mesh;
+    mesh.nominalSize = glm::vec3(1.0f);
+    for (const auto& [x0, colour] : {std::pair{0.0f, left}, std::pair{0.5f, right}}) {
+        const uint32_t first = uint32_t(mesh.vertices.size());
+        for (const glm::vec3 p : {glm::vec3(x0, 0, 0), glm::vec3(x0 + 0.5f, 0, 0), glm::vec3(x0, 1, 0)})
+            mesh.vertices.push_back({p, normal, glm::vec2(0.0f), colour});
+        mesh.indices.insert(mesh.indices.end(), {first, first + 1, first + 2});
+    }
+    return mesh;
+}
+
+TEST(MeshDeviation, MatchesOnlySurfaceOfTheSameColour) {
+    const uint32_t red = packRgba(0.8f, 0.1f, 0.1f), grey = packRgba(0.5f, 0.5f, 0.5f);
+    // The same shape, its panels' colours swapped: each panel's samples find their colour only
+    // in the other panel, half the width away; a shift of 4 levels of 255 is still the same
+    // colour.
+    const glm::vec3 recoloured = meshDeviation(twoPanels(red, grey), twoPanels(grey, red));
+    EXPECT_NEAR(recoloured.x, 0.5f, 1e-5f);
+    EXPECT_EQ(recoloured.z, 0.0f);
+    EXPECT_EQ(meshDeviation(twoPanels(red, grey), twoPanels(red, packRgba(0.5f, 0.5f, 0.5f + 4.0f / 255))),
+              glm::vec3(0.0f));
+    // A colour the other mesh lacks altogether: no surface to match, infinitely far.
+    EXPECT_TRUE(std::isinf(meshDeviation(twoPanels(red, red), twoPanels(grey, grey)).x));
+}
+
+TEST(MeshDeviation, MatchesOnlySurfaceShadedAlike) {
+    const uint32_t grey = packRgba(0.5f, 0.5f, 0.5f);
+    const TerminalMesh facing = twoPanels(grey, grey);
+    // Normals tilted by 30 degrees still match; by 60 degrees they shade differently.
+    const float c30 = std::cos(0.5236f), s30 = std::sin(0.5236f);
+    EXPECT_EQ(meshDeviation(facing, twoPanels(grey, grey, glm::vec3(s30, 0, c30))), glm::vec3(0.0f));
+    EXPECT_TRUE(std::isinf(meshDeviation(facing, twoPanels(grey, grey, glm::vec3(c30, 0, s30))).y));
+}
+
 TEST(CoarserProceduralMesh, TreePartsGetAboutHalfTheirTrianglesWithinASmallDeviation) {
     for (const char* name : {"leaf", "twig", "bark", "fruit"}) {
         const grammar::ShapeInfo shape = treeShape(name);
@@ -71,11 +109,12 @@ TEST(CoarserProceduralMesh, TreePartsGetAboutHalfTheirTrianglesWithinASmallDevia
         EXPECT_EQ(coarse->nominalSize, fine.nominalSize) << name;
         EXPECT_EQ(coarse->source, "procedural");
         const glm::vec3 deviation = meshDeviation(fine, *coarse);
-        // Some change, and less than a fifth of the scope across the facade and up it (the
-        // leaf's fold and curl are in t, which its depth of 1.5 cm turns into millimetres).
+        // Some change, and less than 30 % of the scope across the facade and up it (the twig's
+        // fewer sides shade differently across about a quarter of it; the leaf's fold and curl
+        // are in t, which its depth of 1.5 cm turns into millimetres).
         EXPECT_GT(deviation.x + deviation.y + deviation.z, 0.0f) << name;
-        EXPECT_LT(deviation.x, 0.2f) << name;
-        EXPECT_LT(deviation.y, 0.2f) << name;
+        EXPECT_LT(deviation.x, 0.3f) << name;
+        EXPECT_LT(deviation.y, 0.3f) << name;
         EXPECT_LE(deviation.z, 1.0f) << name;
     }
 }

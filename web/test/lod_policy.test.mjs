@@ -86,8 +86,12 @@ test('a coarse mesh is drawn from where its deviation, scaled by the scope, proj
     // The camera may move by `slack` before the lists are sorted again: the coarse mesh starts that much farther.
     assert.equal(classifyTerminal(at(reach + 0.4), axes, 2, 3, 0.3, distances, false, null, 0.5, reach), 4);
     assert.equal(classifyTerminal(at(reach + 0.6), axes, 2, 3, 0.3, distances, false, null, 0.5, reach), COARSE);
-    // Shapes with impostors and shapes without a coarse mesh never draw one.
-    assert.equal(classifyTerminal(at(reach + 1), axes, 2, 3, 0.3, distances, true, null, 0, reach), 4);
+    // A shape with an impostor draws it from the same distance to LOD3's, its impostors beyond.
+    assert.ok(distances.lod3 > reach + 1);
+    assert.equal(classifyTerminal(at(reach - 0.01), axes, 2, 3, 0.3, distances, true, null, 0, reach), 4);
+    assert.equal(classifyTerminal(at(reach + 1), axes, 2, 3, 0.3, distances, true, null, 0, reach), COARSE);
+    assert.equal(classifyTerminal(at(distances.lod3 + 1), axes, 2, 3, 0.3, distances, true, null, 0, reach), 3);
+    // Shapes without a coarse mesh never draw one.
     assert.equal(classifyTerminal(at(1e5), axes, 2, 3, 0.3, distances, false), 4);
 });
 

@@ -75,7 +75,7 @@ test('the lists are sorted again once the view turns by half the margin, and not
     assert.notEqual(batch.counts, before);
 });
 
-test('a shape without impostor draws its coarse mesh where the deviation projects under the budget', () => {
+test('a shape draws its coarse mesh where the deviation projects under the budget', () => {
     // 1 x 2 m terminals, depth 0.1 m: a deviation of (0.1, 0.05, 1) reaches
     // |(0.1, 0.1, 0.1)| = 0.1732 m, so from 17.32 m at 100 m per metre.
     const coarseGeometry = new THREE.BoxGeometry();
@@ -99,9 +99,12 @@ test('a shape without impostor draws its coarse mesh where the deviation project
     batch.updateLod([0, 0, 0], { ...perMetre, coarse: 10 });
     assert.equal(run.coarse.count, 3);
     assert.equal(run.lod4.count, 0);
-    // A shape with an impostor never falls back on a coarse mesh, as in the native pass.
-    const withImpostor = new TerminalBatch(setOf([[0, 30, 0]]), coarseLibrary, material, impostors);
-    assert.equal(withImpostor.runs[0].coarse, null);
+    // A shape with an impostor draws it too, up to LOD3's distance, as in the native pass.
+    const withImpostor = new TerminalBatch(setOf([[0, 10, 0], [0, 30, 0], [0, 150, 0]]), coarseLibrary, material, impostors);
+    withImpostor.updateLod([0, 0, 0], { ...distances, coarse: 100 });
+    assert.deepEqual(withImpostor.counts, { 4: 2, 3: 1, 2: 0, culled: 0, coarse: 1, occluded: 0 });
+    assert.equal(withImpostor.runs[0].coarse.count, 1);
+    assert.equal(withImpostor.recordOf(withImpostor.runs[0].coarse, 0), 1);
 });
 
 test('terminals the occlusion tiles hide are left out, and each new image sorts the lists again', () => {

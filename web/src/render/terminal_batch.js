@@ -103,8 +103,10 @@ export class TerminalBatch {
             run.records = unwrittenList(count); // record of each LOD4 instance
             run.lod3Records = unwrittenList(count);
             run.lod2Records = unwrittenList(count);
-        } else if (info?.coarse) {
-            // As in the native pass, only a shape without impostor falls back on a coarse mesh.
+        }
+        if (info?.coarse) {
+            // As in the native pass, a LOD4 terminal small enough on screen draws its shape's
+            // coarse mesh, whether or not the shape has an impostor for farther away.
             run.coarse = new THREE.InstancedMesh(info.coarse.geometry, material, count);
             run.coarse.count = 0;
             run.coarse.frustumCulled = false;

@@ -129,6 +129,6 @@ export function classifyTerminal(corner, axes, w, h, d, distances, impostors, vi
     if (view && outsideView(view, cx, cy, cz, radius + slack)) return 0;
     if (occlusion && occlusion.hidesSphere(cx, cy, cz, radius)) return OCCLUDED;
     const distance = Math.sqrt(cx * cx + cy * cy + cz * cz);
-    if (!impostors) return distance - slack >= coarseReach ? COARSE : 4;
-    return distance >= distances.lod2 ? 2 : distance >= distances.lod3 ? 3 : 4;
+    const lod = !impostors ? 4 : distance >= distances.lod2 ? 2 : distance >= distances.lod3 ? 3 : 4;
+    return lod === 4 && distance - slack >= coarseReach ? COARSE : lod;
 }

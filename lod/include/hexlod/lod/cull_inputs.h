@@ -78,8 +78,10 @@ double lodDistance(double geometricError, const scene::LodProfile& profile, doub
                    uint32_t viewportHeight);
 
 // Per-shape layout of the draw lists: list capacity per shape is the number of its terminals
-// in the pages the pass culls; bases are their prefix sums. A coarse shape shares the lists of
-// the shape it serves (same base and capacity, not counted in the total).
+// in the pages the pass culls; bases are their prefix sums. The coarse shape of a shape without
+// impostor shares the lists of the shape it serves (same base and capacity, not counted in the
+// total); that of a shape with one has its own, as long as the served shape's terminals in the
+// pages that may hold LOD4 entries (pageMayHoldLod4).
 struct DrawListLayout {
     std::vector<uint32_t> base, capacity; // per global shape
     uint64_t total = 0;

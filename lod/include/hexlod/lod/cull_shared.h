@@ -65,10 +65,11 @@ struct CullFrame {
 
 // Per global shape (std430 uvec4): x, the first slot of its draw lists; y, their capacity
 // (LOD4 entries fill from the front, impostor entries, LOD3 and LOD2, from the back); z, 1 when
-// it has an impostor, HEXLOD_COARSE_SHAPE for a coarse shape (meshShape), whose LOD4 entries
-// fill the lists of the shape it serves from the back; w, 1 when it is part of a tree (whose
-// terminal's building id is then the tree's id). Counters per shape (uvec4): LOD4, impostor,
-// LOD3, LOD2 entries.
+// it has an impostor, HEXLOD_COARSE_SHAPE for the coarse shape (meshShape) of a shape without
+// impostor, whose LOD4 entries fill the lists of the shape it serves from the back (the coarse
+// shape of a shape with an impostor has lists of its own, DrawListLayout); w, 1 when it is part of a tree
+// (whose terminal's building id is then the tree's id). Counters per shape (uvec4): LOD4, impostor, LOD3,
+// LOD2 entries.
 #define HEXLOD_COARSE_SHAPE 2u
 
 // One resident batch, as the pass sees it (std430, 16 bytes).
@@ -179,13 +180,12 @@ HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, boo
     return lod;
 }
 
-// The global shape a LOD4 terminal draws with. A shape without impostor may have a coarser
-// mesh, a shape of its own (`coarse`, per shape: xyz, how far the two meshes lie apart along
-// each unit-scope axis; w, the coarse shape, or -1 for none). A terminal draws it once that
-// distance, scaled by its scope, projects under the error bound from the centre of its sphere.
-HEXLOD_FN uint meshShape(GpuTerminal t, uint shape, bool impostors, vec4 coarse, vec4 sphere,
-                         CullFrame frame) {
-    if (impostors || coarse.w < 0.0f || frame.coarseMeshes.x <= 0.0f) return shape;
+// The global shape a LOD4 terminal draws with. A shape may have a coarser mesh, a shape of its
+// own (`coarse`, per shape: xyz, how far the two meshes lie apart along each unit-scope axis;
+// w, the coarse shape, or -1 for none). A terminal draws it once that distance, scaled by its
+// scope, projects under the error bound from the centre of its sphere.
+HEXLOD_FN uint meshShape(GpuTerminal t, uint shape, vec4 coarse, vec4 sphere, CullFrame frame) {
+    if (coarse.w < 0.0f || frame.coarseMeshes.x <= 0.0f) return shape;
     float width = halfToFloat(t.size & 0xffffu), height = halfToFloat(t.size >> 16);
     HEXLOD_PRECISE float depth = halfToFloat(t.shapeAndDepth >> 16) * (width < height ? width : height);
     HEXLOD_PRECISE vec3 error = vec3(coarse.x * width, coarse.y * height, coarse.z * depth);

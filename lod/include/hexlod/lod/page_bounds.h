@@ -25,4 +25,8 @@ std::vector<glm::vec4> pageSpheres(const grammar::TerminalSet& set);
 // page's terminals.
 bool pageMayBeVisible(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame);
 
+// False only when every point of `sphere` lies at or beyond LOD3's distance from the camera, so
+// that classifyTerminal gives none of the page's terminals of a shape with an impostor LOD4.
+bool pageMayHoldLod4(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame);
+
 } // namespace hexlod::lod

@@ -9,12 +9,15 @@
 
 namespace hexlod::render {
 
-// A symmetric, sampled Hausdorff distance. The samples are every vertex, edge midpoint and
-// triangle centroid of each mesh; each is matched with its closest point on the other mesh's
-// triangles at `a`'s nominal size, and the result is the largest |difference| along u, v and t
-// over all matches, in unit scope space. It bounds how far a terminal of scope (w, h, d) moves
-// a sample: |(u·w, v·h, t·d)| of the result. A mesh without triangles is infinitely far from one with
-// triangles, and zero from another without.
+// A symmetric, sampled Hausdorff distance that sees appearance as well as shape. The samples
+// are every vertex, edge midpoint and triangle centroid of each mesh; each is matched with its
+// closest point on those triangles of the other mesh that look like its own (the same colour
+// within about 5 levels of 255 per linear channel, a shading normal within about 37 degrees),
+// at `a`'s nominal size. The result is the largest |difference| along u, v and t over all
+// matches, in unit scope space: a dropped mullion counts as far as the nearest frame of its
+// colour, not as the glass behind it. It bounds how far a terminal of scope (w, h, d) moves a
+// sample: |(u·w, v·h, t·d)| of the result. A sample with no look-alike triangle makes it
+// infinite; so does a mesh without triangles against one with, and two without are zero apart.
 glm::vec3 meshDeviation(const TerminalMesh& a, const TerminalMesh& b);
 
 } // namespace hexlod::render
