@@ -24,7 +24,8 @@ void main() {
     commands[at + 1u] = count.x;
     commands[at + 2u] = mesh.y;
     commands[at + 3u] = mesh.z;
-    // A coarse shape's entries fill its lists from the back (cull_shared.h).
+    // The coarse shape of a shape without impostor fills that shape's lists from the back
+    // (cull_shared.h).
     commands[at + 4u] = info.z == HEXLOD_COARSE_SHAPE ? info.x + info.y - count.x : info.x;
     at = shapeCount * 5u + shape * 4u;
     commands[at + 0u] = 6u * count.y;
