@@ -277,6 +277,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     inputs.shapeImpostor = shapes_.impostorFlags();
     inputs.shapeTree = shapeTree_;
     inputs.shapeCoarse = shapes_.coarseTable();
+    inputs.maxListRecords = cull_.maxListRecords();
     inputs.trees = &trees_.trees();
     inputs.treeBuffer = trees_.treeBuffer();
     std::vector<std::pair<uint32_t, bool>> billboards; // tree batch, every tree a billboard

@@ -10,6 +10,9 @@ CullResult cullOnCpu(const CullInputs& inputs) {
     CullResult result;
     result.lod4.resize(inputs.shapeCount);
     result.impostor.resize(inputs.shapeCount);
+    // The coarse meshes as the GPU pass sees them, with the draw lists it would lay out.
+    const std::vector<glm::vec4> coarse =
+        inputs.shapeCoarse.empty() ? inputs.shapeCoarse : coarseTable(inputs, selectCullPages(inputs).layout);
     for (const CullBatchInput& batch : inputs.batches) {
         // The GPU receives the origin as float, rounded from the double difference.
         const glm::vec3 origin = glm::vec3(batch.cellOrigin - inputs.camera);
@@ -36,10 +39,9 @@ CullResult cullOnCpu(const CullInputs& inputs) {
                 ++result.occluded;
                 continue;
             }
-            const uint32_t drawn =
-                lod == HEXLOD_LOD4 && !inputs.shapeCoarse.empty()
-                    ? shared::meshShape(t, shape, inputs.shapeCoarse[shape], sphere, inputs.frame)
-                    : shape;
+            const uint32_t drawn = lod == HEXLOD_LOD4 && !coarse.empty()
+                                       ? shared::meshShape(t, shape, coarse[shape], sphere, inputs.frame)
+                                       : shape;
             t.position = corner;
             t.building = std::bit_cast<uint32_t>(lod == HEXLOD_LOD2 ? -1.0f : transition);
             t.shapeAndDepth = (t.shapeAndDepth & 0xffff0000u) | drawn;

@@ -110,8 +110,13 @@ CullPages selectCullPages(const CullInputs& inputs) {
     // A coarse shape has no records of its own; each terminal of the shape it serves is drawn
     // with one of the two meshes. Where that shape has no impostor, the coarse entries fill
     // its lists from the back, where impostor entries would go. Where it has one, they get
-    // lists of their own, as long as the served shape's terminals within LOD4's distance.
+    // lists of their own, as long as the served shape's terminals within LOD4's distance, when
+    // they fit beside every shape's own.
+    uint64_t own = 0, coarse = 0;
+    for (uint32_t s = 0; s < inputs.shapeCount; ++s) own += layout.capacity[s];
     for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s)
+        if (inputs.shapeCoarse[s].w >= 0.0f && inputs.shapeImpostor.at(s)) coarse += withinLod4[s];
+    for (uint32_t s = 0; s < inputs.shapeCoarse.size() && own + coarse <= inputs.maxListRecords; ++s)
         if (inputs.shapeCoarse[s].w >= 0.0f && inputs.shapeImpostor.at(s))
             layout.capacity.at(uint32_t(inputs.shapeCoarse[s].w)) = withinLod4[s];
     for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
@@ -125,6 +130,14 @@ CullPages selectCullPages(const CullInputs& inputs) {
         layout.capacity.at(coarse) = layout.capacity[s];
     }
     return out;
+}
+
+std::vector<glm::vec4> coarseTable(const CullInputs& inputs, const DrawListLayout& layout) {
+    std::vector<glm::vec4> table = inputs.shapeCoarse;
+    for (uint32_t s = 0; s < table.size(); ++s)
+        if (table[s].w >= 0.0f && inputs.shapeImpostor.at(s) && layout.capacity.at(uint32_t(table[s].w)) == 0)
+            table[s].w = -1.0f;
+    return table;
 }
 
 } // namespace hexlod::lod

@@ -32,6 +32,9 @@ GpuCull::~GpuCull() {
 }
 
 bool GpuCull::init(std::string& error) {
+    GLint64 maxBlockBytes = 0;
+    gl::glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlockBytes);
+    maxListRecords_ = uint64_t(maxBlockBytes) / sizeof(gpu::GpuTerminal);
     render::ShaderLibrary library = lodShaderLibrary();
     cull_ = render::ShaderProgram::build(library, {{render::ShaderStage::Compute, "terminal_cull.comp"}}, "",
                                          error);
@@ -77,7 +80,7 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
         batches.push_back(batch);
     }
     std::vector<glm::uvec4> shapes(shapeCount_), meshInfo(shapeCount_);
-    std::vector<glm::vec4> coarse = inputs.shapeCoarse;
+    std::vector<glm::vec4> coarse = coarseTable(inputs, layout_);
     coarse.resize(shapeCount_, glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
     for (uint32_t s = 0; s < shapeCount_; ++s) {
         shapes[s] = glm::uvec4(layout_.base[s], layout_.capacity[s], inputs.shapeImpostor[s],

@@ -191,6 +191,22 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         if (trial == 5) {
             EXPECT_EQ(counters[coarse3].x + counters[coarse8].x, 0u);
         }
+        // Draw lists that may not hold the coarse shapes' own lists leave them out: shape 8
+        // then draws its full mesh, in both passes.
+        if (trial == 0) {
+            ASSERT_GT(counters[coarse8].x, 0u);
+            CullInputs tight = inputs;
+            tight.maxListRecords = layout.total - 1;
+            const CullResult tightReference = cullOnCpu(tight);
+            cull.run(tight, arena.buffer(), meshes);
+            const std::vector<glm::uvec4> tightCounters = cull.readCounters();
+            EXPECT_LE(cull.layout().total, tight.maxListRecords);
+            EXPECT_EQ(cull.layout().capacity[coarse8], 0u);
+            EXPECT_EQ(tightCounters[coarse8].x + tightReference.lod4[coarse8].size(), 0u);
+            EXPECT_EQ(tightCounters[8].x, counters[8].x + counters[coarse8].x);
+            EXPECT_EQ(tightReference.lod4[8].size(), tightCounters[8].x);
+            EXPECT_EQ(tightCounters[coarse3].x, counters[coarse3].x) << "a shape without impostor keeps its";
+        }
         fine += counters[3].x;
         coarse += counters[coarse3].x;
         coarseWithImpostor += counters[coarse8].x;

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace hexlod::lod {
@@ -32,10 +33,13 @@ struct CullInputs {
     std::vector<uint8_t> shapeImpostor; // per global shape: 1 when it has an impostor
     std::vector<uint8_t> shapeTree;     // per global shape: 1 when it is part of a tree
     // Per global shape, its coarser mesh (meshShape in cull_shared.h): xyz how far it lies from
-    // the shape's mesh per unit-scope axis, w the coarse shape or -1. Empty: none has one. A
-    // shape with an impostor has none (the coarse shape's entries take the impostors' place
-    // in its lists).
+    // the shape's mesh per unit-scope axis, w the coarse shape or -1. Empty: none has one. The
+    // passes use it through coarseTable.
     std::vector<glm::vec4> shapeCoarse;
+    // The most records the draw lists may hold (GpuCull::maxListRecords, the GL's largest
+    // storage block). The arena fits in it, so the shapes' own lists always do; the coarse
+    // shapes' own lists (DrawListLayout) are left out where they would not.
+    uint64_t maxListRecords = std::numeric_limits<uint64_t>::max();
     // By tree id: the tree's position relative to the trees' origin (xyz) and its species (w);
     // needed when a shape is a tree shape. treeBuffer is the same on the GPU.
     const std::vector<glm::vec4>* trees = nullptr;
@@ -98,5 +102,10 @@ struct CullPages {
     uint64_t occludedTerminals = 0; // of those, in pages the occlusion tiles hide
 };
 CullPages selectCullPages(const CullInputs& inputs);
+
+// inputs.shapeCoarse as both passes use it with `layout`: a shape with an impostor whose coarse
+// shape has no lists of its own (no page within LOD3's distance, or they would not fit within
+// inputs.maxListRecords) draws its full mesh.
+std::vector<glm::vec4> coarseTable(const CullInputs& inputs, const DrawListLayout& layout);
 
 } // namespace hexlod::lod

@@ -48,6 +48,8 @@ public:
     };
     PageStats pageStats() const { return stats_; }
     uint32_t shapeCount() const { return shapeCount_; }
+    // The most draw-list records one storage block holds (CullInputs::maxListRecords).
+    uint64_t maxListRecords() const { return maxListRecords_; }
     uint32_t listBuffer() const { return buffers_[kLists].id; }
     uint32_t frameBuffer() const { return buffers_[kFrame].id; } // the CullFrame uniform block
     uint32_t commandBuffer() const { return buffers_[kCommands].id; }
@@ -87,6 +89,7 @@ private:
     DrawListLayout layout_;
     PageStats stats_;
     uint32_t shapeCount_ = 0;
+    uint64_t maxListRecords_ = 0;
 };
 
 // The lod module's embedded GLSL (lod/shaders/ and cull_shared.h) on top of render's and
