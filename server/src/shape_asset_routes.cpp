@@ -103,8 +103,9 @@ void ServiceApi::shapeMesh(const RequestContext& c, Respond respond) const {
         return respond(immutableBytes(c.request, mesh->hash, "model/gltf-binary", mesh->glb));
     }
     if (!mesh->coarse)
-        return respond(
-            errorReply(404, shapeName(*target) + " has no coarse mesh (only tree parts have one)"));
+        return respond(errorReply(
+            404, shapeName(*target) +
+                     " has no coarse mesh (its generator has no coarser level that keeps its look)"));
     if (mesh->coarse->hash != target->key)
         return respond(staleKey("coarse mesh", service_.coarseMeshUrl(target->grammar, target->shape)));
     respond(immutableBytes(c.request, mesh->coarse->hash, "model/gltf-binary", mesh->coarse->glb));

@@ -22,7 +22,7 @@ std::string text(const server::AssetBytes& b) {
 }
 
 // Grammar 0: shape 0 has a mesh and an impostor baked without a store (no EXR), shape 1 a
-// mesh and a coarse mesh (as a tree part has); grammar 1 has one shape with a mesh and a
+// mesh and a coarse mesh (as a window or a tree part has); grammar 1 has one shape with a mesh and a
 // stored impostor; the last grammar has one tree species, baked without a store.
 server::ShapeAssets handMadeAssets(const server::SceneService& service) {
     server::ShapeAssets assets;

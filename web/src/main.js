@@ -53,7 +53,7 @@ async function start() {
     if (!capabilities.terminal_meshes) messages.add('terminal meshes are not served by this service: LOD4 draws stand-in quads', 'notice');
     if (!capabilities.impostors) messages.add('impostors are not served by this service: every terminal is drawn at LOD4', 'notice');
     const libraries = {};
-    // ?coarse=0 draws tree parts with their full meshes at any distance, for comparisons.
+    // ?coarse=0 draws LOD4 terminals with their full meshes at any distance, for comparisons.
     const coarse = params.get('coarse') !== '0';
     for (const g of scene.grammars) libraries[g.index] = new ShapeLibrary(g, { meshes: !!capabilities.terminal_meshes, coarse });
     const impostors = new ImpostorSet(scene, world.lighting);

@@ -5,7 +5,7 @@
 // COLOR_0 in unit space; node transforms applied, primitives merged); without it, or when a
 // shape's mesh fails to load, the shape gets a stand-in: its scope's front face at full
 // protrusion, coloured by what its name says it is. `status` says which, for the stats panel.
-// A shape with a served `coarse_mesh` (a tree part) also gets that mesh's geometry as
+// A shape with a served `coarse_mesh` also gets that mesh's geometry as
 // `coarse` ({geometry, deviation, triangles}), drawn where lod_policy.coarseMeshReach allows; it
 // stays null without meshes or when that glTF fails to load (the shape's mesh is drawn then).
 import * as THREE from 'three';

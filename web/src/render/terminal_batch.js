@@ -8,8 +8,8 @@
 // outside the view or, with occlusion tiles, hidden behind the base volumes (a CPU stand-in
 // for the native renderer's GPU pass);
 // without them every terminal is LOD4 and the lists never change, unless a tree batch's cut
-// moves trees between terminals and billboards, or a shape has a coarse mesh (a tree part):
-// its LOD4 terminals are then sorted between the shape's mesh and the coarse one by
+// moves trees between terminals and billboards, or a shape has a coarse mesh: its LOD4
+// terminals are then sorted between the shape's mesh and the coarse one by
 // lod_policy.coarseMeshReach, as the native pass does.
 import * as THREE from 'three';
 

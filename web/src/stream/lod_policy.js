@@ -10,7 +10,7 @@
 //   geometric_error[3] stays under max_sse, LOD2 from geometric_error[2]'s; a terminal whose
 //   camera is behind the plane its shape recedes to is culled (backface), and without
 //   impostors every visible terminal is LOD4;
-// - per LOD4 terminal of a shape with a coarse mesh (a tree part), that mesh once the two
+// - per LOD4 terminal of a shape with a coarse mesh, that mesh once the two
 //   meshes' deviation, scaled by the terminal's scope, projects under max_sse from its scope
 //   centre (meshShape in cull_shared.h).
 export const EXTRUDED = 'extruded';

@@ -21,9 +21,9 @@ namespace hexlod::server {
 
 using AssetBytes = std::shared_ptr<const std::vector<uint8_t>>;
 
-// A coarser mesh of a shape without impostor (a tree part, lod/coarse_meshes.h): a client
-// draws it instead of the shape's mesh where `deviation`, scaled by the terminal's scope,
-// projects under the error bound, the rule of the native renderer's cull pass.
+// A coarser mesh of a shape (lod/coarse_meshes.h): a client draws it instead of the shape's
+// mesh at LOD4 where `deviation`, scaled by the terminal's scope, projects under the error
+// bound, the rule of the native renderer's cull pass.
 struct CoarseMeshAsset {
     uint64_t hash = 0; // its render::TerminalMesh::contentHash: the URL's key
     AssetBytes glb;
