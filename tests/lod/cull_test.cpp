@@ -205,7 +205,8 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
             EXPECT_EQ(tightCounters[coarse8].x + tightReference.lod4[coarse8].size(), 0u);
             EXPECT_EQ(tightCounters[8].x, counters[8].x + counters[coarse8].x);
             EXPECT_EQ(tightReference.lod4[8].size(), tightCounters[8].x);
-            EXPECT_EQ(tightCounters[coarse3].x, counters[coarse3].x) << "a shape without impostor keeps its";
+            EXPECT_EQ(tightCounters[coarse3].x, counters[coarse3].x)
+                << "a shape without impostor keeps its coarse mesh";
         }
         fine += counters[3].x;
         coarse += counters[coarse3].x;
