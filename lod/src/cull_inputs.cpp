@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace hexlod::lod {
 
@@ -61,6 +62,16 @@ void setOcclusion(shared::CullFrame& frame, const glm::dvec3& forward, const glm
     frame.occlusion = glm::vec4(float(columns), float(rows), float(tilePixels), 0.0f);
 }
 
+namespace {
+
+// Whether shape `s` has a coarse shape that fills lists of its own (DrawListLayout): `s` has an
+// impostor, whose entries already take the back of its lists.
+bool hasCoarseListsOfItsOwn(const CullInputs& inputs, uint32_t s) {
+    return inputs.shapeCoarse[s].w >= 0.0f && inputs.shapeImpostor.at(s);
+}
+
+} // namespace
+
 CullPages selectCullPages(const CullInputs& inputs) {
     CullPages out;
     DrawListLayout& layout = out.layout;
@@ -112,19 +123,19 @@ CullPages selectCullPages(const CullInputs& inputs) {
     // its lists from the back, where impostor entries would go. Where it has one, they get
     // lists of their own, as long as the served shape's terminals within LOD4's distance, when
     // they fit beside every shape's own.
-    uint64_t own = 0, coarse = 0;
-    for (uint32_t s = 0; s < inputs.shapeCount; ++s) own += layout.capacity[s];
+    uint64_t records = std::accumulate(layout.capacity.begin(), layout.capacity.end(), uint64_t(0));
     for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s)
-        if (inputs.shapeCoarse[s].w >= 0.0f && inputs.shapeImpostor.at(s)) coarse += withinLod4[s];
-    for (uint32_t s = 0; s < inputs.shapeCoarse.size() && own + coarse <= inputs.maxListRecords; ++s)
-        if (inputs.shapeCoarse[s].w >= 0.0f && inputs.shapeImpostor.at(s))
-            layout.capacity.at(uint32_t(inputs.shapeCoarse[s].w)) = withinLod4[s];
+        if (hasCoarseListsOfItsOwn(inputs, s)) records += withinLod4[s];
+    if (records <= inputs.maxListRecords)
+        for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s)
+            if (hasCoarseListsOfItsOwn(inputs, s))
+                layout.capacity.at(uint32_t(inputs.shapeCoarse[s].w)) = withinLod4[s];
     for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
         layout.base[s] = uint32_t(layout.total);
         layout.total += layout.capacity[s];
     }
     for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s) {
-        if (inputs.shapeCoarse[s].w < 0.0f || inputs.shapeImpostor.at(s)) continue;
+        if (inputs.shapeCoarse[s].w < 0.0f || hasCoarseListsOfItsOwn(inputs, s)) continue;
         const uint32_t coarse = uint32_t(inputs.shapeCoarse[s].w);
         layout.base.at(coarse) = layout.base[s];
         layout.capacity.at(coarse) = layout.capacity[s];
@@ -135,7 +146,7 @@ CullPages selectCullPages(const CullInputs& inputs) {
 std::vector<glm::vec4> coarseTable(const CullInputs& inputs, const DrawListLayout& layout) {
     std::vector<glm::vec4> table = inputs.shapeCoarse;
     for (uint32_t s = 0; s < table.size(); ++s)
-        if (table[s].w >= 0.0f && inputs.shapeImpostor.at(s) && layout.capacity.at(uint32_t(table[s].w)) == 0)
+        if (hasCoarseListsOfItsOwn(inputs, s) && layout.capacity.at(uint32_t(table[s].w)) == 0)
             table[s].w = -1.0f;
     return table;
 }
