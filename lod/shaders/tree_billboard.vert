@@ -1,7 +1,8 @@
 #version 450 core
 // One billboard per tree that the frame's tree cut (treeIsBillboard, shared with the cull pass)
-// leaves to its species impostor: a camera-facing square over the impostor's bounding sphere,
-// blending four views (as LOD3) or, beyond LOD2's distance, showing the nearest (as LOD2);
+// leaves to its species impostor: a camera-facing rectangle over the species' box, within the
+// square over the impostor's bounding sphere, blending four views (as LOD3) or, beyond LOD2's
+// distance, showing the nearest (as LOD2);
 // smaller on screen than tree_size.glsl's limit, a point instead (tree_point.vert). It is
 // dropped whole when what the frame drew before hides it (depth_tiles.glsl), and its fragments
 // where that hides their tile: the fragment shader writes its depth, so the GL cannot reject
@@ -12,6 +13,8 @@
 
 layout(std140, binding = 0) uniform CullFrameBlock { CullFrame cull; };
 layout(std430, binding = 9) readonly buffer SphereBuffer { vec4 spheres[]; }; // per species
+// Per species, its box in tree space: two vec4, the lowest corner and the highest (w unused).
+layout(std430, binding = 16) readonly buffer BoxBuffer { vec4 speciesBoxes[]; };
 
 #include "pulled_quad.glsl"
 #include "depth_tiles.glsl"
@@ -27,6 +30,32 @@ flat out uint vSpecies;
 flat out uint vOneView; // beyond LOD2's distance: the nearest view alone, as LOD2 draws facades
 // Window depth of the sphere's nearest point (2: none, so no fragment is dropped).
 flat out float vNearestDepth;
+
+// The rectangle, in the billboard's plane (through `centre`, across the view ray; `right`,
+// `up` spanning it, offsets from `centre`), that holds what the camera sees of the box
+// [lo, hi]: each corner taken along its ray onto the plane. Only pixels whose ray meets the
+// box can show the tree; the square's other pixels (half of it or more for the shipped
+// species) would ray-cast the impostor only to find nothing. Kept within the square, so it
+// never draws more than the square did; the whole square where a corner lies at or behind
+// the camera's side of the plane.
+void boxRectangle(vec3 lo, vec3 hi, vec3 centre, vec3 right, vec3 up, float radius, out vec2 rectLo,
+                  out vec2 rectHi) {
+    vec3 ray = normalize(centre);
+    float plane = dot(centre, ray);
+    rectLo = vec2(radius), rectHi = vec2(-radius);
+    for (int c = 0; c < 8; ++c) {
+        vec3 corner = mix(lo, hi, vec3(float(c & 1), float((c >> 1) & 1), float(c >> 2)));
+        float along = dot(corner, ray);
+        if (along <= 1e-3 * plane) {
+            rectLo = vec2(-radius), rectHi = vec2(radius);
+            return;
+        }
+        vec3 offset = corner * (plane / along) - centre;
+        vec2 at = vec2(dot(offset, right), dot(offset, up));
+        rectLo = min(rectLo, at), rectHi = max(rectHi, at);
+    }
+    rectLo = max(rectLo, vec2(-radius)), rectHi = min(rectHi, vec2(radius));
+}
 
 void main() {
     vec4 tree = billboardTrees[pulledRecord()];
@@ -47,15 +76,18 @@ void main() {
     vec3 up = abs(toCamera.z) > 0.999 ? vec3(0, 1, 0) : vec3(0, 0, 1);
     vec3 right = normalize(cross(up, toCamera));
     up = cross(toCamera, right);
-    // The square's screen rectangle, and the depth of the sphere's nearest point along the
-    // view axis: the tree's surface lies behind it. Skipped when the sphere reaches the near
-    // plane or a corner is behind the camera.
+    vec2 rectLo, rectHi;
+    boxRectangle(vBase + speciesBoxes[2u * vSpecies].xyz, vBase + speciesBoxes[2u * vSpecies + 1u].xyz, centre,
+                 right, up, sphere.w, rectLo, rectHi);
+    // The rectangle on screen, and the depth of the sphere's nearest point along the view
+    // axis: the tree's surface lies behind it. Skipped when the sphere reaches the near plane
+    // or a corner is behind the camera.
     vec2 lo = vec2(1e30), hi = vec2(-1e30);
     vec3 forward = vec3(cull.viewForward);
     bool projectable = depthTilesEnabled != 0u && dot(centre, forward) - sphere.w > cull.viewForward.w;
     for (int c = 0; c < 4; ++c) {
-        vec2 at = vec2(float(c & 1), float(c >> 1)) * 2.0 - 1.0;
-        vec4 clip = viewProjection * vec4(centre + (at.x * right + at.y * up) * sphere.w, 1.0);
+        vec2 at = mix(rectLo, rectHi, vec2(float(c & 1), float(c >> 1)));
+        vec4 clip = viewProjection * vec4(centre + at.x * right + at.y * up, 1.0);
         projectable = projectable && clip.w > 0.0;
         lo = min(lo, clip.xy / clip.w);
         hi = max(hi, clip.xy / clip.w);
@@ -68,7 +100,7 @@ void main() {
         return;
     }
     int vertex = pulledCorner();
-    vec2 corner = vec2(float(vertex & 1), float(vertex >> 1)) * 2.0 - 1.0;
-    vPosition = centre + (corner.x * right + corner.y * up) * sphere.w;
+    vec2 corner = mix(rectLo, rectHi, vec2(float(vertex & 1), float(vertex >> 1)));
+    vPosition = centre + corner.x * right + corner.y * up;
     gl_Position = viewProjection * vec4(vPosition, 1.0);
 }

@@ -226,7 +226,7 @@ bool CityRenderer::init(std::string& error) {
     for (uint32_t g = uint32_t(buildingGrammars); g < catalog_.index().grammarCount(); ++g)
         for (size_t s = 0; s < meshes_.shapeCount(g); ++s) shapeTree_[shapes_.shapeBase(g) + s] = 1;
     shapes_.commit();
-    if (!trees_.init(catalog_, impostors_, ground_.origin(), error)) return false;
+    if (!trees_.init(catalog_, impostors_, ground_.origin(), options_.fitTreeBillboards, error)) return false;
     if (!depthTiles_.init(options_.width, options_.height, options_.samples, error)) return false;
 
     gl::glCreateBuffers(1, &frameBuffer_);

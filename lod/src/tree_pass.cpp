@@ -46,13 +46,13 @@ glm::vec4 enclose(const std::vector<glm::vec3>& centres, const std::vector<float
 } // namespace
 
 TreePass::~TreePass() {
-    for (uint32_t buffer : {byId_, instances_, spheres_, viewAverages_})
+    for (uint32_t buffer : {byId_, instances_, spheres_, boxes_, viewAverages_})
         if (buffer) gl::glDeleteBuffers(1, &buffer);
     if (vao_) gl::glDeleteVertexArrays(1, &vao_);
 }
 
 bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* impostors,
-                    const glm::dvec3& origin, std::string& error) {
+                    const glm::dvec3& origin, bool fitToBoxes, std::string& error) {
     origin_ = origin;
     const scene::BuiltScene& scene = catalog.scene();
     if (scene.treeGrammars.empty()) return true;
@@ -111,22 +111,27 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
     if (!impostors || impostors->species.empty()) return true;
 
     std::vector<const impostor::ImpostorAtlas*> atlases;
-    std::vector<glm::vec4> spheres;
+    std::vector<glm::vec4> spheres, boxes;
     for (const impostor::ImpostorAtlas& atlas : impostors->species) {
         atlases.push_back(&atlas);
         spheres.emplace_back(atlas.centre, atlas.radius);
+        // The cube around the sphere gives each billboard the sphere's square whole.
+        const glm::vec3 reach(atlas.radius);
+        boxes.emplace_back(fitToBoxes ? atlas.boundsMin : atlas.centre - reach, 0.0f);
+        boxes.emplace_back(fitToBoxes ? atlas.boundsMax : atlas.centre + reach, 0.0f);
     }
     const impostor::ViewLayout& layout = impostors->species.front().layout;
     impostor::ViewLookup lookup(layout);
     if (!textures_.upload(layout, atlases, lookup.buildTable(64), error)) return false;
     upload(spheres_, spheres);
+    upload(boxes_, boxes);
     std::vector<glm::vec4> averages;
     for (const impostor::ImpostorAtlas& atlas : impostors->species) {
         const std::vector<glm::vec4> species = treeViewAverages(atlas);
         averages.insert(averages.end(), species.begin(), species.end());
     }
     upload(viewAverages_, averages);
-    bytes_ += (spheres.size() + averages.size()) * sizeof(glm::vec4) + textures_.byteSize();
+    bytes_ += (spheres.size() + boxes.size() + averages.size()) * sizeof(glm::vec4) + textures_.byteSize();
     buildChunks(instances, spheres);
     render::ShaderLibrary library = lodShaderLibrary();
     program_ = render::ShaderProgram::build(library,
@@ -234,6 +239,7 @@ uint32_t TreePass::drawRanges(const render::ShaderProgram& program, const TreeFr
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, spheres_);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, instances_);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, viewAverages_);
+    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 16, boxes_);
     gl::glBindVertexArray(vao_);
     if (points) gl::glEnable(GL_PROGRAM_POINT_SIZE);
     uint32_t draws = 0;

@@ -1,19 +1,21 @@
 // The whole frame on llvmpipe: every mode renders a small city, the LOD system costs less than
 // everything at LOD4 and stays close to it, multisampling antialiases, tree billboards cover
-// what their trees cover with and without it, trees a pixel across are points that cover as
-// much, the profile's tree error places the cut, far tree parts draw coarser meshes, hidden
-// billboards and LOD3 impostors are dropped without changing a pixel, a city 1e7 m out renders
-// as at the origin, odd cameras render without error, and golden images hold each mode's look.
+// what their trees cover with and without it and shade only their species' box, trees a pixel across are
+// points that cover as much, the profile's tree error places the cut, far tree parts draw coarser meshes,
+// hidden billboards and LOD3 impostors are dropped without changing a pixel, a city 1e7 m out renders as at
+// the origin, odd cameras render without error, and golden images hold each mode's look.
 #include "../render/gl_fixture.h"
 #include "test_city.h"
 
 #include "hexlod/lod/city_renderer.h"
+#include "hexlod/render/gl_api.h"
 #include "hexlod/render/image_io.h"
 #include "hexlod/render/image_metrics.h"
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
 
 namespace hexlod::lod {
 namespace {
@@ -44,8 +46,9 @@ protected:
     Rendered render(testing::TestCity& city, const SceneImpostors& impostors, RenderMode mode,
                     const scene::CameraPose& pose, uint32_t frames = 1, uint32_t samples = 1,
                     bool dropHidden = true, const scene::LodProfile& lod = {},
-                    double treePointsUnderSse = 2.0) {
+                    double treePointsUnderSse = 2.0, bool fitTreeBillboards = true) {
         CityRendererOptions options;
+        options.fitTreeBillboards = fitTreeBillboards;
         options.lod = lod;
         options.treePointsUnderSse = treePointsUnderSse;
         options.dropHidden = dropHidden;
@@ -185,6 +188,70 @@ TEST_F(CityRendererTest, TreesAPixelOrTwoAcrossArePointsThatCoverWhatTheirBillbo
                  billboardError = render::compareImages(billboards.image, trees.image).psnr;
     std::printf("against tree geometry: points %.2f dB, billboards %.2f dB\n", pointError, billboardError);
     EXPECT_GT(pointError, billboardError - 1.0);
+}
+
+// Fragment shader invocations between construction and destruction
+// (ARB_pipeline_statistics_query); 0 where the GL does not count them.
+class FragmentInvocations {
+public:
+    FragmentInvocations() {
+        GLint extensions = 0;
+        gl::glGetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+        for (GLint i = 0; i < extensions; ++i)
+            if (std::string(reinterpret_cast<const char*>(gl::glGetStringi(GL_EXTENSIONS, GLuint(i)))) ==
+                "GL_ARB_pipeline_statistics_query")
+                gl::glGenQueries(1, &query_); // Mesa's glCreateQueries refuses this target
+        if (query_) gl::glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, query_);
+    }
+    ~FragmentInvocations() {
+        if (query_) gl::glDeleteQueries(1, &query_);
+    }
+    uint64_t count() {
+        if (!query_) return 0;
+        gl::glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
+        uint64_t invocations = 0;
+        gl::glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &invocations);
+        return invocations;
+    }
+
+private:
+    GLuint query_ = 0;
+};
+
+TEST_F(CityRendererTest, TreeBillboardsCoverTheirSpeciesBoxAloneAndDrawTheSameImage) {
+    // Trees only, every one a billboard (a tree error of 5 cm). A billboard over its species'
+    // box rather than its sphere's square leaves out pixels where the impostor shows nothing:
+    // the same image (the box holds every surface the views saw) for far fewer fragments. The
+    // billboards' fragments are the frame's less those of the same frame with points instead.
+    testing::TestCity city = testing::makeCity(0, 120);
+    const SceneImpostors impostors = bake(city);
+    const scene::CameraPose pose = lookAt({-60, -70, 12}, {0, 0, 5});
+    scene::LodProfile lod;
+    lod.treeGeometricError = 0.05;
+    const Rendered trees = render(city, impostors, RenderMode::AllLod4, pose, 1, 4);
+    uint64_t fragments[3] = {0, 0, 0}; // points, squares, boxes
+    Rendered frames[3];
+    for (int i = 0; i < 3; ++i) {
+        FragmentInvocations invocations;
+        frames[i] =
+            render(city, impostors, RenderMode::Lod, pose, 1, 4, true, lod, i == 0 ? 1e9 : 2.0, i == 2);
+        fragments[i] = invocations.count();
+    }
+    EXPECT_EQ(frames[0].stats.treeBillboards, 0u);
+    ASSERT_GT(frames[1].stats.treeBillboards, 0u);
+    EXPECT_EQ(frames[2].stats.treeBillboards, frames[1].stats.treeBillboards);
+    const double between = render::compareImages(frames[2].image, frames[1].image).psnr,
+                 square = render::compareImages(frames[1].image, trees.image).psnr,
+                 box = render::compareImages(frames[2].image, trees.image).psnr;
+    std::printf("billboard fragments: %lld over the squares, %lld over the boxes; boxes against squares "
+                "%.1f dB; against tree geometry %.2f dB (squares) and %.2f dB (boxes)\n",
+                static_cast<long long>(fragments[1] - fragments[0]),
+                static_cast<long long>(fragments[2] - fragments[0]), between, square, box);
+    EXPECT_GT(between, 50.0);
+    EXPECT_GT(box, square - 0.05);
+    if (fragments[1] == 0 && !context().info().software) return; // this GL does not count them
+    EXPECT_GT(fragments[1], fragments[0]) << "llvmpipe counts fragment shader invocations";
+    EXPECT_LT(fragments[2] - fragments[0], (fragments[1] - fragments[0]) * 2 / 3);
 }
 
 TEST_F(CityRendererTest, TheProfilesTreeErrorPlacesTheCutBetweenTreesAndBillboards) {

@@ -65,6 +65,9 @@ struct CityRendererOptions {
     // many times the profile's maxScreenSpaceError: its billboard would show no detail the bound
     // admits. 0: never.
     double treePointsUnderSse = 2.0;
+    // Each tree billboard covers its species' box on screen rather than its bounding sphere's
+    // square, where the impostor can show nothing. Off only to check that it changes no pixel.
+    bool fitTreeBillboards = true;
 };
 
 struct FrameStats {

@@ -2,7 +2,8 @@
 // position and species, which the cull pass also reads to drop the terminals of billboard
 // trees), pulled per tree batch by vertex id (pulled_quad.glsl); each billboard faces the
 // camera and ray-casts its species' full-sphere impostor, so it shows the right view from any
-// direction, from above included, and writes the depth of the tree it shows. A tree too small
+// direction, from above included, and writes the depth of the tree it shows. It covers the
+// screen rectangle of its species' box (the tree's own bounds), within its sphere's square. A tree too small
 // on screen for its billboard to show more than an average colour is a point instead
 // (tree_size.glsl, tree_view_averages.h). A batch's trees lie in chunks of neighbours, each
 // with its bounds: chunks outside the frustum, behind the occlusion tiles or wholly inside the
@@ -39,9 +40,10 @@ public:
     TreePass& operator=(const TreePass&) = delete;
 
     // Collects the scene's trees relative to `origin` and uploads them with the species
-    // impostors. A scene without trees allocates nothing.
+    // impostors. A scene without trees allocates nothing. `fitToBoxes`: each billboard covers
+    // its species' box on screen (ImpostorAtlas bounds), else its sphere's whole square.
     bool init(const cells::BatchCatalog& catalog, const SceneImpostors* impostors, const glm::dvec3& origin,
-              std::string& error);
+              bool fitToBoxes, std::string& error);
 
     bool empty() const { return trees_.empty(); }
     const glm::dvec3& origin() const { return origin_; }
@@ -88,7 +90,7 @@ private:
     glm::dvec3 origin_{0.0};
     impostor::ImpostorTextures textures_;
     render::ShaderProgram program_, pointProgram_;
-    uint32_t byId_ = 0, instances_ = 0, spheres_ = 0, viewAverages_ = 0, vao_ = 0;
+    uint32_t byId_ = 0, instances_ = 0, spheres_ = 0, boxes_ = 0, viewAverages_ = 0, vao_ = 0;
     uint64_t bytes_ = 0;
 };
 
