@@ -2,7 +2,8 @@
 // (40 trees of the shipped species, a few houses) in chromium. From 150 m the same view is drawn
 // with every tree as terminals, as billboards of its species' impostor, and without trees; the
 // billboards must cover about the pixels the terminals cover and bring the image much closer to
-// the terminals' than no trees at all; drawn as terminals this far out, the trees' parts use
+// the terminals' than no trees at all, and draw the same over their species' boxes as over their
+// spheres' whole squares; drawn as terminals this far out, the trees' parts use
 // their coarse meshes, with fewer triangles and an image close to the full meshes' (?coarse=0);
 // by distance (the default) the cut must split the park's batches from nearer and make every
 // tree a billboard from farther; and after the trees are edited, the service bakes species for
@@ -94,6 +95,13 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         // Each tree grows from its own seed; the species' impostor shows one tree of them.
         assert.ok(c.overlap > 0.45, `the two tree masks overlap by ${c.overlap.toFixed(2)}`);
         assert.ok(c.psnrBillboards > c.psnrNone + 3, `PSNR against the terminals: billboards ${c.psnrBillboards.toFixed(2)} dB, no trees ${c.psnrNone.toFixed(2)} dB`);
+        // Over their species' boxes or over their spheres' whole squares (?treeboxes=0), the
+        // billboards draw the same trees: the squares' other pixels show nothing.
+        const squares = await view('billboards', near, '&treeboxes=0');
+        const fit = await compare(page, { none: none.image, terminals: squares.image, billboards: billboards.image });
+        assert.ok(fit.psnrBillboards > 45, `billboards over boxes against squares: ${fit.psnrBillboards.toFixed(2)} dB`);
+        assert.ok(Math.abs(fit.billboardPixels - fit.terminalPixels) <= 0.01 * fit.terminalPixels,
+            `the trees cover ${fit.billboardPixels} pixels over boxes and ${fit.terminalPixels} over squares`);
 
         // Nearer, the cut runs through the park: its near trees are terminals, its far ones
         // billboards, in the same batches.
@@ -181,6 +189,7 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         console.log(
             `web.browser trees: billboards cover ${coverage.toFixed(2)} of the terminals' ${c.terminalPixels} pixels (overlap ${c.overlap.toFixed(2)}), ` +
                 `PSNR against terminals ${c.psnrBillboards.toFixed(2)} dB (no trees: ${c.psnrNone.toFixed(2)} dB); ` +
+                `over boxes against squares ${fit.psnrBillboards.toFixed(2)} dB, ${fit.billboardPixels} and ${fit.terminalPixels} tree pixels; ` +
                 `coarse meshes for ${treeParts.coarse} of ${treeParts[4]} LOD4 terminals: ${terminals.state.triangles} triangles against ${full.state.triangles}, ` +
                 `${coarseError.psnrBillboards.toFixed(2)} dB against full meshes; ` +
                 `first view ${terminals.state.loadTime?.toFixed(2)} s with terminals, ${billboards.state.loadTime?.toFixed(2)} s with billboards; ` +

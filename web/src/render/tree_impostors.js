@@ -1,8 +1,10 @@
 // The tree species' full-sphere impostors (scene.tree_species, scene.tree_impostor_layout; the
 // files of /api/v1/tree-impostors/...), drawn as billboards for trees far from the camera, as
-// the native renderer does (thesis §7.4). A billboard is a camera-facing quad over the species'
-// bounding sphere (centre, radius: tree space, x east, y north, z up, the trunk base at the
-// origin) that blends the four grid views around the direction to the camera by their bilinear
+// the native renderer does (thesis §7.4). A billboard is a camera-facing quad in the plane
+// through the centre of the species' bounding sphere (centre, radius: tree space, x east, y
+// north, z up, the trunk base at the origin), over what the camera sees of the species' box
+// within the sphere's square, as lod/shaders/tree_billboard.vert places it: the square's other
+// pixels show nothing. It blends the four grid views around the direction to the camera by their bilinear
 // weights, each sampled where the quad's point lies in that view's frame. It writes the depth
 // the views store, so a billboard sinks into the ground and behind buildings where the tree
 // does, not where its flat quad would. As in the native renderer, coverage becomes the sample
@@ -17,6 +19,7 @@ import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
 const VERTEX = /* glsl */ `
 uniform vec4 sphere;      // centre xyz, radius (tree space)
+uniform vec3 boxLo, boxHi; // the species' box (tree space); the sphere's cube draws the square
 uniform vec3 atlasLayout; // grid, view resolution, padding
 flat out vec4 vViews;
 out vec4 vWeights;
@@ -32,16 +35,41 @@ vec2 viewUv(float view, vec3 q) {
     treeBasis(treeViewDirection(view, atlasLayout.x), right, up);
     return vec2(dot(q, right), dot(q, up));
 }
+// The rectangle, in radii from the centre along right and up, of the box's corners taken
+// along their rays from the camera onto the quad's plane, within the square; the square where
+// a corner is not in front of the camera's side of the plane.
+void boxRectangle(vec3 base, vec3 centre, vec3 right, vec3 up, out vec2 lo, out vec2 hi) {
+    vec3 toCentre = centre - cameraPosition;
+    vec3 ray = normalize(toCentre);
+    float plane = dot(toCentre, ray);
+    lo = vec2(1.0), hi = vec2(-1.0);
+    for (int c = 0; c < 8; ++c) {
+        vec3 corner = base + mix(boxLo, boxHi, vec3(float(c & 1), float((c >> 1) & 1), float(c >> 2))) - cameraPosition;
+        float along = dot(corner, ray);
+        if (along <= 1e-3 * plane) {
+            lo = vec2(-1.0), hi = vec2(1.0);
+            return;
+        }
+        vec3 offset = corner * (plane / along) - toCentre;
+        vec2 at = vec2(dot(offset, right), dot(offset, up)) / sphere.w;
+        lo = min(lo, at), hi = max(hi, at);
+    }
+    lo = max(lo, vec2(-1.0)), hi = min(hi, vec2(1.0));
+}
 void main() {
     // Trees stand upright and unrotated: the quad's matrix only carries the tree's base.
-    vec3 centre = (modelMatrix * vec4(quadMatrix()[3].xyz + sphere.xyz, 1.0)).xyz;
+    vec3 base = (modelMatrix * vec4(quadMatrix()[3].xyz, 1.0)).xyz;
+    vec3 centre = base + sphere.xyz;
     vec3 forward = cameraPosition - centre;
     forward = dot(forward, forward) > 1e-12 ? normalize(forward) : vec3(0.0, 0.0, 1.0);
     float grid = atlasLayout.x;
     gridBlend(treeGridPosition(forward, grid), grid, vViews, vWeights);
     vec3 right, up;
     treeBasis(forward, right, up);
-    vec3 q = position.x * right + position.y * up; // in radii, relative to the centre
+    vec2 lo, hi;
+    boxRectangle(base, centre, right, up, lo, hi);
+    vec2 at = mix(lo, hi, position.xy * 0.5 + 0.5);
+    vec3 q = at.x * right + at.y * up; // in radii, relative to the centre
     vUv0 = viewUv(vViews.x, q);
     vUv1 = viewUv(vViews.y, q);
     vUv2 = viewUv(vViews.z, q);
@@ -86,10 +114,13 @@ function speciesKey(grammar, parameters) {
 
 export class TreeImpostors {
     // `multisampled`: whether the canvas has samples for alpha to coverage.
-    constructor(scene, lighting, { multisampled = true } = {}) {
+    // `boxes`: each billboard covers its species' box alone (false: the sphere's whole square,
+    // for comparisons).
+    constructor(scene, lighting, { multisampled = true, boxes = true } = {}) {
         this.layout = scene.tree_impostor_layout ?? null;
         this.lighting = lighting;
         this.multisampled = multisampled;
+        this.boxes = boxes;
         this.species = []; // by species index: {albedo, normal, impostor, material}
         this.byKey = new Map();
         this.failed = [];
@@ -140,6 +171,10 @@ export class TreeImpostors {
         if (species.material) return species.material;
         const { grid, view_resolution, padding } = this.layout;
         const imp = species.impostor;
+        // Without its bounds (or boxes off), the sphere's cube: the quad is the whole square.
+        const box = this.boxes && imp.bounds_min && imp.bounds_max
+            ? [imp.bounds_min, imp.bounds_max]
+            : [imp.centre.map((c) => c - imp.radius), imp.centre.map((c) => c + imp.radius)];
         species.material = new THREE.ShaderMaterial({
             vertexShader: VERTEX,
             fragmentShader: FRAGMENT,
@@ -155,6 +190,8 @@ export class TreeImpostors {
             blendDstAlpha: THREE.OneFactor,
             uniforms: {
                 sphere: { value: new THREE.Vector4(...imp.centre, imp.radius) },
+                boxLo: { value: new THREE.Vector3(...box[0]) },
+                boxHi: { value: new THREE.Vector3(...box[1]) },
                 atlasLayout: { value: new THREE.Vector3(grid, view_resolution, padding) },
                 albedoAtlas: { value: species.albedo },
                 normalAtlas: { value: species.normal },
