@@ -2,7 +2,8 @@
 // (the browser test's setup), the opening view until every wanted payload is drawn, then
 // frames rendered by hand, each timed until a one-pixel readPixels returns (so the time
 // includes the GL work, which gl.finish() in chromium does not wait for):
-// - the whole frame, with its draw calls, triangles and terminals per LOD;
+// - the whole frame, with its draw calls, triangles and terminals per LOD, and the cache's
+//   bytes (payloads and the GPU buffers made from them);
 // - the frame without the impostor meshes (LOD2 and LOD3, and the tree billboards), and
 //   without the tree billboards alone;
 // - the whole frame with a one-pixel scissor, which leaves the vertex and primitive work and
@@ -51,6 +52,7 @@ try {
         out.draw_calls = world.renderer.info.render.calls;
         out.triangles = world.renderer.info.render.triangles;
         out.terminals = window.hexlod.state().streamer.terminals; // per LOD, and LOD4 drawn with coarse meshes
+        out.cache = window.hexlod.state().cache; // payloads and what they hold for the GPU, in bytes
         impostors.forEach((o) => (o.visible = false));
         out.without_impostors_ms = median();
         impostors.forEach((o) => (o.visible = true));

@@ -1,7 +1,7 @@
 // TerminalBatch's sorting of a terminal set into LOD4, LOD3 and LOD2 lists (src/render/
 // terminal_batch.js): terminals behind their wall or outside the view are left out, and the
 // lists are sorted again when the camera has moved or turned enough, or with a new occlusion
-// image, not before.
+// image, not before; a sorted batch's instance buffers grow with what its lists draw.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import * as THREE from 'three';
@@ -151,4 +151,35 @@ test('a sort that leaves a list as it was uploads nothing of it again', () => {
     assert.deepEqual(Array.from(run.lod2Records.subarray(0, run.lod2.count)), [3]);
     // Its matrix is record 3's: the corner at (0, 260, 0).
     assert.deepEqual(Array.from(run.lod2.instanceMatrix.array.subarray(12, 15)), [0, 260, 0]);
+});
+
+test('a sorted batch\'s instance buffers grow with what its lists draw', () => {
+    // 300 terminals: 10 within LOD3's distance, 290 beyond it.
+    const corners = [];
+    for (let i = 0; i < 10; ++i) corners.push([i, 20, 0]);
+    for (let i = 0; i < 290; ++i) corners.push([i, 150, 0]);
+    const batch = new TerminalBatch(setOf(corners), library, material, impostors);
+    const run = batch.runs[0];
+    assert.equal(run.lod4.bytes, 0, 'nothing held before the first sort');
+    batch.updateLod([0, 0, 0], distances);
+    assert.equal(run.lod4.count, 10);
+    assert.equal(run.lod4.bytes, 64 * 64, 'the first 64 instances, not the 300 of the run');
+    const before = batch.gpuBytes;
+    // With LOD3 ten times farther out (and the camera moved back 30 m, more than the sort's
+    // tolerance) every terminal is LOD4: the buffer grows to hold them all, the matrices
+    // written before kept.
+    batch.updateLod([0, -30, 0], { lod3: 1000, lod2: 2000 });
+    assert.equal(run.lod4.count, 300);
+    assert.equal(run.lod4.bytes, 300 * 64, 'no more than the run holds');
+    assert.equal(batch.gpuBytes - before, (300 - 64) * 64, 'the growth is counted');
+    for (const slot of [0, 9, 10, 299]) {
+        const record = run.records[slot];
+        assert.deepEqual(Array.from(run.lod4.instanceMatrix.array.subarray(16 * slot + 12, 16 * slot + 15)), corners[record],
+            `slot ${slot} holds record ${record}'s matrix`);
+    }
+    // A batch that is never sorted holds every terminal from the start.
+    const plain = new TerminalBatch(setOf(corners.slice(0, 100)), library, material, null);
+    assert.equal(plain.runs[0].lod4.count, 100);
+    assert.equal(plain.gpuBytes, 100 * 64);
+    assert.deepEqual(Array.from(plain.runs[0].lod4.instanceMatrix.array.subarray(16 * 99 + 12, 16 * 99 + 15)), corners[99]);
 });

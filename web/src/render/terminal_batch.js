@@ -15,12 +15,21 @@ import * as THREE from 'three';
 
 import { halfToFloat, quaternionAxes, snorm16ToFloat } from '../payload/record.js';
 import { COARSE, classifyTerminal, coarseMeshReach, movedEnough, moveTolerance, OCCLUDED, turnedEnough } from '../stream/lod_policy.js';
+import { GrowingInstances } from './growing_instances.js';
 
 const FLAT_DEPTH = 1e-3;
 
 // The records of a list not sorted yet: none is a record, so every slot is written.
 function unwrittenList(count) {
     return new Uint32Array(count).fill(0xffffffff);
+}
+
+// An unsorted batch's LOD4 list: every terminal of the run, once.
+function fill(list, matrices) {
+    list.reserve(matrices.length / 16);
+    list.instanceMatrix.array.set(matrices);
+    list.instanceMatrix.needsUpdate = true;
+    list.count = matrices.length / 16;
 }
 
 export class TerminalBatch {
@@ -72,22 +81,24 @@ export class TerminalBatch {
         this.lastViewKey = null;
         this.lastPerMetre = -1;
         this.sorted = treeCut || this.runs.some((r) => r.lod3 || r.coarse);
-        if (this.sorted) for (const run of this.runs) run.records ??= unwrittenList(run.count);
         this.lastCut = -1;
-        this.baseBytes = this.matrices.byteLength * (this.sorted ? 2 : 1);
+        // The CPU's matrices, kept to sort from, and the lists' records; the instance buffers
+        // are counted as they grow (gpuBytes).
+        this.baseBytes = this.sorted ? this.matrices.byteLength : 0;
         for (const run of this.runs) {
-            if (run.coarse) this.baseBytes += run.coarse.instanceMatrix.array.byteLength + run.reach.byteLength;
+            if (this.sorted) run.records ??= unwrittenList(run.count);
+            else fill(run.lod4, this.matrices.subarray(16 * run.first, 16 * (run.first + run.count)));
+            if (run.coarse) this.baseBytes += run.reach.byteLength;
             for (const list of [run.records, run.lod3Records, run.lod2Records, run.coarse?.userData.records]) this.baseBytes += list?.byteLength ?? 0;
         }
-        // Without impostors or a tree cut the lists never change: the instance buffers hold all there is.
+        // Without impostors or a tree cut the lists never change: the instance buffers hold all
+        // there is. Sorted, each list grows with what it draws (updateLod), from nothing.
         if (!this.sorted) this.matrices = this.frames = this.sizes = null;
     }
 
     makeRun(shape, first, count, library, material, impostors) {
         const info = library.shape(shape);
-        const lod4 = new THREE.InstancedMesh(info?.geometry ?? library.shapes[0]?.geometry, material, count);
-        lod4.instanceMatrix.array.set(this.matrices.subarray(16 * first, 16 * (first + count)));
-        lod4.instanceMatrix.needsUpdate = true;
+        const lod4 = new GrowingInstances(info?.geometry ?? library.shapes[0]?.geometry, material, count);
         lod4.frustumCulled = false; // the cell's bounds decide visibility
         lod4.userData.batch = this;
         lod4.userData.records = null; // instance i is record first + i until re-sorted
@@ -107,8 +118,7 @@ export class TerminalBatch {
         if (info?.coarse) {
             // As in the native pass, a LOD4 terminal small enough on screen draws its shape's
             // coarse mesh, whether or not the shape has an impostor for farther away.
-            run.coarse = new THREE.InstancedMesh(info.coarse.geometry, material, count);
-            run.coarse.count = 0;
+            run.coarse = new GrowingInstances(info.coarse.geometry, material, count);
             run.coarse.frustumCulled = false;
             run.coarse.userData.batch = this;
             run.coarse.userData.records = unwrittenList(count); // record of each coarse instance
@@ -171,6 +181,7 @@ export class TerminalBatch {
                 const slot = filled[lod]++;
                 if (records[lod][slot] !== i) {
                     records[lod][slot] = i;
+                    lists[lod].reserve?.(slot + 1); // impostor quads grow as their matrices are spread
                     lists[lod].instanceMatrix.array.set(this.matrices.subarray(16 * i, 16 * i + 16), 16 * slot);
                     changed[lod] = true;
                 }
@@ -187,11 +198,11 @@ export class TerminalBatch {
         this.counts = counts;
     }
 
-    // Bytes for the GPU: the matrices and the impostor quads, which grow with the most quads a
-    // LOD has drawn.
+    // Bytes for the GPU: the matrices, and the instance buffers and impostor quads, which grow
+    // with the most instances a list has drawn.
     get gpuBytes() {
         let bytes = this.baseBytes;
-        for (const run of this.runs) bytes += (run.lod3?.bytes ?? 0) + (run.lod2?.bytes ?? 0);
+        for (const run of this.runs) for (const list of [run.lod4, run.coarse, run.lod3, run.lod2]) bytes += list?.bytes ?? 0;
         return bytes;
     }
 
