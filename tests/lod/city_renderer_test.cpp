@@ -66,6 +66,19 @@ protected:
         return out;
     }
 
+    // The tree tests' park: trees only, 120 of the shipped species, with their impostors.
+    struct Park {
+        testing::TestCity city;
+        SceneImpostors impostors;
+    };
+    Park park() {
+        Park p{testing::makeCity(0, 120), {}};
+        p.impostors = bake(p.city);
+        return p;
+    }
+    // The view across the park from 12 m up, where most of its trees are billboards.
+    static scene::CameraPose acrossThePark() { return lookAt({-60, -70, 12}, {0, 0, 5}); }
+
     static scene::CameraPose lookAt(glm::dvec3 eye, glm::dvec3 target, double fovDegrees = 60.0) {
         scene::CameraPose pose;
         pose.position = eye;
@@ -156,9 +169,8 @@ TEST_F(CityRendererTest, MultisampledTreeBillboardsCoverWhatTheirTreesCover) {
     // coverage; drawn into a target left at one sample, every faint texel would cover its
     // whole pixel and rows of far crowns would stack into solid ones (4 dB worse than one
     // sample per pixel; 4 dB better when the target is multisampled).
-    testing::TestCity city = testing::makeCity(0, 120);
-    const SceneImpostors impostors = bake(city);
-    const scene::CameraPose pose = lookAt({-60, -70, 12}, {0, 0, 5});
+    auto [city, impostors] = park();
+    const scene::CameraPose pose = acrossThePark();
     double psnr[2] = {0.0, 0.0};
     for (uint32_t pass = 0; pass < 2; ++pass) {
         const uint32_t samples = pass == 0 ? 1 : 4;
@@ -174,8 +186,7 @@ TEST_F(CityRendererTest, MultisampledTreeBillboardsCoverWhatTheirTreesCover) {
 TEST_F(CityRendererTest, TreesAPixelOrTwoAcrossArePointsThatCoverWhatTheirBillboardsCover) {
     // Trees only, from 300 m: each about three pixels across, under the point size (twice the
     // default 2 px error bound).
-    testing::TestCity city = testing::makeCity(0, 120);
-    const SceneImpostors impostors = bake(city);
+    auto [city, impostors] = park();
     const scene::CameraPose pose = lookAt({-200, -220, 40}, {0, 0, 0});
     Rendered trees = render(city, impostors, RenderMode::AllLod4, pose, 1, 4);
     Rendered points = render(city, impostors, RenderMode::Lod, pose, 1, 4);
@@ -223,9 +234,8 @@ TEST_F(CityRendererTest, TreeBillboardsCoverTheirSpeciesBoxAloneAndDrawTheSameIm
     // box rather than its sphere's square leaves out pixels where the impostor shows nothing:
     // the same image (the box holds every surface the views saw) for far fewer fragments. The
     // billboards' fragments are the frame's less those of the same frame with points instead.
-    testing::TestCity city = testing::makeCity(0, 120);
-    const SceneImpostors impostors = bake(city);
-    const scene::CameraPose pose = lookAt({-60, -70, 12}, {0, 0, 5});
+    auto [city, impostors] = park();
+    const scene::CameraPose pose = acrossThePark();
     scene::LodProfile lod;
     lod.treeGeometricError = 0.05;
     const Rendered trees = render(city, impostors, RenderMode::AllLod4, pose, 1, 4);
@@ -258,9 +268,8 @@ TEST_F(CityRendererTest, TheProfilesTreeErrorPlacesTheCutBetweenTreesAndBillboar
     // Trees only, so every LOD4 terminal is a tree's. A billboard is accepted where the tree
     // error stays under the budget: a small error makes every tree a billboard, a huge one
     // none, one in between keeps the near trees geometry; 0 turns billboards off.
-    testing::TestCity city = testing::makeCity(0, 120);
-    const SceneImpostors impostors = bake(city);
-    const scene::CameraPose pose = lookAt({-60, -70, 12}, {0, 0, 5});
+    auto [city, impostors] = park();
+    const scene::CameraPose pose = acrossThePark();
     const double errors[4] = {0.0, 0.05, 2.0, 1e3};
     uint64_t treeTerminals[4] = {0, 0, 0, 0};
     for (size_t i = 0; i < 4; ++i) {
@@ -281,9 +290,8 @@ TEST_F(CityRendererTest, TheProfilesTreeErrorPlacesTheCutBetweenTreesAndBillboar
 TEST_F(CityRendererTest, FarTreePartsDrawCoarserMeshesThatLookTheSameForFewerTriangles) {
     // Trees only and no billboards (tree error 0), so the LOD system and the reference draw
     // the same tree terminals at LOD4; the LOD system draws the far ones' coarser meshes.
-    testing::TestCity city = testing::makeCity(0, 120);
-    const SceneImpostors impostors = bake(city);
-    const scene::CameraPose pose = lookAt({-60, -70, 12}, {0, 0, 5});
+    auto [city, impostors] = park();
+    const scene::CameraPose pose = acrossThePark();
     scene::LodProfile lod;
     lod.treeGeometricError = 0.0;
     const Rendered full = render(city, impostors, RenderMode::AllLod4, pose, 1, 4);
