@@ -68,9 +68,20 @@ test('far trees are billboards that stand for their trees, and edited trees get 
             const image = await page.screenshot({ path: path.join(artifacts, `trees-${trees}${options.replace(/[&=]/g, '-')}.png`), timeout: 60000 });
             return { image: image.toString('base64'), state: await page.evaluate(() => window.hexlod.state()) };
         };
+        // Per drawn billboard mesh, the width of the box its quads cover as a share of its
+        // species sphere's diameter (1: the whole square).
+        const boxWidths = () => page.evaluate(() => {
+            const widths = [];
+            window.hexlod.world.scene.traverse((o) => {
+                const u = o.material?.uniforms;
+                if (o.isMesh && o.count > 0 && u?.boxLo) widths.push((u.boxHi.value.x - u.boxLo.value.x) / (2 * u.sphere.value.w));
+            });
+            return widths;
+        });
         const none = await view('none');
         const terminals = await view('terminals');
         const billboards = await view('billboards');
+        const boxes = await boxWidths();
         const scene = await (await fetch(`${base}api/v1/scene`)).json();
         assert.equal(scene.capabilities.tree_billboards, true);
         assert.equal(billboards.state.streamer.trees.billboards, 40, 'every tree is a billboard');
@@ -98,6 +109,9 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         // Over their species' boxes or over their spheres' whole squares (?treeboxes=0), the
         // billboards draw the same trees: the squares' other pixels show nothing.
         const squares = await view('billboards', near, '&treeboxes=0');
+        const squareWidths = await boxWidths();
+        assert.ok(boxes.length > 0 && boxes.every((w) => w < 0.95), `billboards over boxes ${boxes.map((w) => w.toFixed(2))} of their squares' width`);
+        assert.ok(squareWidths.length === boxes.length && squareWidths.every((w) => Math.abs(w - 1) < 1e-6), `squares ${squareWidths}`);
         const fit = await compare(page, { none: none.image, terminals: squares.image, billboards: billboards.image });
         assert.ok(fit.psnrBillboards > 45, `billboards over boxes against squares: ${fit.psnrBillboards.toFixed(2)} dB`);
         assert.ok(Math.abs(fit.billboardPixels - fit.terminalPixels) <= 0.01 * fit.terminalPixels,
@@ -189,7 +203,7 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         console.log(
             `web.browser trees: billboards cover ${coverage.toFixed(2)} of the terminals' ${c.terminalPixels} pixels (overlap ${c.overlap.toFixed(2)}), ` +
                 `PSNR against terminals ${c.psnrBillboards.toFixed(2)} dB (no trees: ${c.psnrNone.toFixed(2)} dB); ` +
-                `over boxes against squares ${fit.psnrBillboards.toFixed(2)} dB, ${fit.billboardPixels} and ${fit.terminalPixels} tree pixels; ` +
+                `over boxes (${boxes.map((w) => w.toFixed(2)).join(', ')} of the squares' width) against squares ${fit.psnrBillboards.toFixed(2)} dB, ${fit.billboardPixels} and ${fit.terminalPixels} tree pixels; ` +
                 `coarse meshes for ${treeParts.coarse} of ${treeParts[4]} LOD4 terminals: ${terminals.state.triangles} triangles against ${full.state.triangles}, ` +
                 `${coarseError.psnrBillboards.toFixed(2)} dB against full meshes; ` +
                 `first view ${terminals.state.loadTime?.toFixed(2)} s with terminals, ${billboards.state.loadTime?.toFixed(2)} s with billboards; ` +
