@@ -3,9 +3,9 @@
 // trees), pulled per tree batch by vertex id (pulled_quad.glsl); each billboard faces the
 // camera and ray-casts its species' full-sphere impostor, so it shows the right view from any
 // direction, from above included, and writes the depth of the tree it shows. It covers the
-// screen rectangle of its species' box (the tree's own bounds), within its sphere's square. A tree too small
-// on screen for its billboard to show more than an average colour is a point instead
-// (tree_size.glsl, tree_view_averages.h). A batch's trees lie in chunks of neighbours, each
+// screen rectangle of its species' box (the tree's own bounds), within its sphere's square.
+// A tree too small on screen for its billboard to show more than an average colour is a
+// point instead (tree_size.glsl, tree_view_averages.h). A batch's trees lie in chunks of neighbours, each
 // with its bounds: chunks outside the frustum, behind the occlusion tiles or wholly inside the
 // tree cut are not drawn at all, and a chunk wholly on one side of the point size is drawn by
 // that form alone.
