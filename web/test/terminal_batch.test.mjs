@@ -165,10 +165,10 @@ test('a sorted batch\'s instance buffers grow with what its lists draw', () => {
     assert.equal(run.lod4.count, 10);
     assert.equal(run.lod4.bytes, 64 * 64, 'the first 64 instances, not the 300 of the run');
     const before = batch.gpuBytes;
-    // With LOD3 ten times farther out (and the camera moved back 30 m, more than the sort's
-    // tolerance) every terminal is LOD4: the buffer grows to hold them all, the matrices
-    // written before kept.
-    batch.updateLod([0, -30, 0], { lod3: 1000, lod2: 2000 });
+    // With LOD3 ten times farther out (a taller viewport, the camera where it was) every
+    // terminal is LOD4: the lists are sorted again, and the buffer grows to hold them all,
+    // the matrices written before kept.
+    batch.updateLod([0, 0, 0], { lod3: 1000, lod2: 2000 });
     assert.equal(run.lod4.count, 300);
     assert.equal(run.lod4.bytes, 300 * 64, 'no more than the run holds');
     assert.equal(batch.gpuBytes - before, (300 - 64) * 64, 'the growth is counted');

@@ -79,7 +79,7 @@ export class TerminalBatch {
         this.lastOcclusion = null;
         this.lastForward = null;
         this.lastViewKey = null;
-        this.lastPerMetre = -1;
+        this.lastDistances = null; // the LOD3, LOD2 and coarse distances of the last sort
         this.sorted = treeCut || this.runs.some((r) => r.lod3 || r.coarse);
         this.lastCut = -1;
         // The CPU's matrices, kept to sort from, and the lists' records; the instance buffers
@@ -143,15 +143,18 @@ export class TerminalBatch {
         const cutVersion = cut ? cut.version : -1;
         const viewKey = view ? view.key : null;
         const perMetre = distances.coarse ?? 0;
+        // The distances change with the viewport's height and the profile, which the view's key
+        // does not hold.
+        const distanceKey = `${distances.lod3} ${distances.lod2} ${perMetre}`;
         const occlusionVersion = occlusion ? occlusion.version : null;
-        if (cutVersion === this.lastCut && viewKey === this.lastViewKey && perMetre === this.lastPerMetre &&
+        if (cutVersion === this.lastCut && viewKey === this.lastViewKey && distanceKey === this.lastDistances &&
             occlusionVersion === this.lastOcclusion && !movedEnough(this.lastCamera, camera, distances.lod3) &&
             !(view && turnedEnough(this.lastForward, view.forward)))
             return;
         this.lastOcclusion = occlusionVersion;
         this.lastCamera = camera.slice();
         this.lastCut = cutVersion;
-        this.lastPerMetre = perMetre;
+        this.lastDistances = distanceKey;
         this.lastViewKey = viewKey;
         this.lastForward = view ? view.forward.slice() : null;
         // How far the camera may move before the lists are sorted again.
