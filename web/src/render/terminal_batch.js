@@ -4,10 +4,11 @@
 // from its quaternion (4 x snorm16), S = (w, h, d) with d = depthRatio · min(w, h) (flat shapes
 // get a hair of depth so the matrix stays invertible for normals). With impostors, terminals
 // are re-sorted into the three lists by lod_policy.classifyTerminal whenever the camera has
-// moved or turned enough for the decision to change, leaving out those behind their wall,
-// outside the view or, with occlusion tiles, hidden behind the base volumes (a CPU stand-in
-// for the native renderer's GPU pass);
-// without them every terminal is LOD4 and the lists never change, unless a tree batch's cut
+// moved or turned enough for the decision to change, or the LOD distances have changed,
+// leaving out those behind their wall, outside the view or, with occlusion tiles, hidden
+// behind the base volumes (a CPU stand-in for the native renderer's GPU pass); a sorted
+// batch's LOD4 and coarse instance buffers grow with what the lists draw. Without impostors
+// every terminal is LOD4 and the lists never change, unless a tree batch's cut
 // moves trees between terminals and billboards, or a shape has a coarse mesh: its LOD4
 // terminals are then sorted between the shape's mesh and the coarse one by
 // lod_policy.coarseMeshReach, as the native pass does.
