@@ -1,9 +1,10 @@
 // The whole frame on llvmpipe: every mode renders a small city, the LOD system costs less than
 // everything at LOD4 and stays close to it, multisampling antialiases, tree billboards cover
-// what their trees cover with and without it and shade only their species' box, trees a pixel across are
-// points that cover as much, the profile's tree error places the cut, far tree parts draw coarser meshes,
-// hidden billboards and LOD3 impostors are dropped without changing a pixel, a city 1e7 m out renders as at
-// the origin, odd cameras render without error, and golden images hold each mode's look.
+// what their trees cover with and without it and shade only their species' box, trees a pixel
+// across are points that cover as much, the profile's tree error places the cut, far tree
+// parts draw coarser meshes, hidden billboards and LOD3 impostors are dropped without changing
+// a pixel, a city 1e7 m out renders as at the origin, odd cameras render without error, and
+// golden images hold each mode's look.
 #include "../render/gl_fixture.h"
 #include "test_city.h"
 

@@ -4,10 +4,10 @@
 // through the centre of the species' bounding sphere (centre, radius: tree space, x east, y
 // north, z up, the trunk base at the origin), over what the camera sees of the species' box
 // within the sphere's square, as lod/shaders/tree_billboard.vert places it: the square's other
-// pixels show nothing. It blends the four grid views around the direction to the camera by their bilinear
-// weights, each sampled where the quad's point lies in that view's frame. It writes the depth
-// the views store, so a billboard sinks into the ground and behind buildings where the tree
-// does, not where its flat quad would. As in the native renderer, coverage becomes the sample
+// pixels show nothing. It blends the four grid views around the direction to the camera by
+// their bilinear weights, each sampled where the quad's point lies in that view's frame. It
+// writes the depth the views store, so a billboard sinks into the ground and behind buildings
+// where the tree does, not where its flat quad would. As in the native renderer, coverage becomes the sample
 // mask on a multisampled canvas (alpha to coverage) and is a cutout at one half otherwise; the
 // stored normals light it as the meshes are lit (lights.js).
 import * as THREE from 'three';
