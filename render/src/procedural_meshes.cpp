@@ -6,6 +6,7 @@
 #include "shape_generators.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 
@@ -72,9 +73,10 @@ std::optional<TerminalMesh> buildProceduralMesh(const grammar::ShapeInfo& shape)
 
 std::optional<TerminalMesh> buildCoarserProceduralMesh(const grammar::ShapeInfo& shape,
                                                        const TerminalMesh& fine) {
-    if (fine.source != "procedural") return std::nullopt;
+    const ShapeGenerator* generator = findGenerator(shape.name);
+    if (fine.source != "procedural" || !generator) return std::nullopt;
     grammar::ShapeInfo coarser = shape;
-    coarser.triangles = uint32_t(fine.triangleCount() / 2);
+    coarser.triangles = uint32_t(std::lround(generator->coarseShare * float(fine.triangleCount())));
     std::optional<TerminalMesh> mesh = buildProceduralMesh(coarser);
     if (!mesh || 4 * mesh->triangleCount() > 3 * fine.triangleCount()) return std::nullopt;
     return mesh;

@@ -14,6 +14,8 @@ struct ShapeGenerator {
     const char* name;
     int maxDetail; // levels 0..maxDetail
     void (*build)(MeshBuilder& builder, int detail);
+    // The coarse level's share of the fine mesh's triangles (buildCoarserProceduralMesh).
+    float coarseShare = 0.5f;
 };
 
 std::span<const ShapeGenerator> windowGenerators();

@@ -33,7 +33,7 @@ void twig(MeshBuilder& b, int detail) {
 // A pointed leaf folded along its midrib and curling up towards the tip, double-sided.
 void leaf(MeshBuilder& b, int detail) {
     const float W = b.W(), H = b.H(), D = b.D();
-    const int sections = 4 + detail;
+    const int sections = 2 + detail;
     const float stalk = 0.08f * H, cx = 0.5f * W;
     const auto curl = [&](float f) { return D * (0.1f + 0.4f * f * f); };
     std::vector<glm::vec3> left, mid, right;
@@ -75,11 +75,16 @@ void fruit(MeshBuilder& b, int detail) {
              palette::kFruit);
 }
 
+// A tree part drawn coarse is a few pixels across, and the parts are most of the LOD4 pass's
+// triangles at street level. Their coarse levels take a fifth of the triangles, the leaf's a
+// third: measured one part at a time on the default street, a fifth moved the image by under
+// 0.01 dB but for the leaf's, 0.25 dB; a third of the leaf's moves it 0.06 dB
+// (docs/BENCHMARKS.md, "Coarser tree parts").
 constexpr ShapeGenerator kGenerators[] = {
-    {"bark", 16, bark},
-    {"twig", 12, twig},
-    {"leaf", 12, leaf},
-    {"fruit", 12, fruit},
+    {"bark", 16, bark, 0.2f},
+    {"twig", 12, twig, 0.2f},
+    {"leaf", 14, leaf, 1.0f / 3.0f},
+    {"fruit", 12, fruit, 0.2f},
 };
 
 } // namespace

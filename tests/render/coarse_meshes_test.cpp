@@ -98,22 +98,25 @@ TEST(MeshDeviation, MatchesOnlySurfaceShadedAlike) {
     EXPECT_TRUE(std::isinf(meshDeviation(facing, twoPanels(grey, grey, glm::vec3(c30, 0, s30))).y));
 }
 
-TEST(CoarserProceduralMesh, TreePartsGetAboutHalfTheirTrianglesWithinASmallDeviation) {
-    for (const char* name : {"leaf", "twig", "bark", "fruit"}) {
+TEST(CoarserProceduralMesh, TreePartsGetTheirShareOfTheTrianglesWithinASmallDeviation) {
+    // A fifth of the triangles, a third for the leaf (tree_meshes.cpp): the level nearest it.
+    for (const auto& [name, share] : {std::pair{"leaf", 1.0f / 3.0f}, std::pair{"twig", 0.2f},
+                                      std::pair{"bark", 0.2f}, std::pair{"fruit", 0.2f}}) {
         const grammar::ShapeInfo shape = treeShape(name);
         const TerminalMesh fine = buildProceduralMesh(shape).value();
         const std::optional<TerminalMesh> coarse = buildCoarserProceduralMesh(shape, fine);
         ASSERT_TRUE(coarse.has_value()) << name;
-        EXPECT_LE(4 * coarse->triangleCount(), 3 * fine.triangleCount()) << name;
-        EXPECT_GE(4 * coarse->triangleCount(), fine.triangleCount()) << name;
+        const float ratio = float(coarse->triangleCount()) / float(fine.triangleCount());
+        EXPECT_NEAR(ratio, share, 0.1f)
+            << name << ": " << coarse->triangleCount() << " of " << fine.triangleCount();
         EXPECT_EQ(coarse->nominalSize, fine.nominalSize) << name;
         EXPECT_EQ(coarse->source, "procedural");
         const glm::vec3 deviation = meshDeviation(fine, *coarse);
-        // Some change, and less than 30 % of the scope across the facade and up it (the twig's
-        // fewer sides shade differently across about a quarter of it; the leaf's fold and curl
-        // are in t, which its depth of 1.5 cm turns into millimetres).
+        // Some change, and at most half the scope across the facade and up it (the twig's
+        // three sides shade differently across nearly half of it, 2 cm of its 5; the leaf's
+        // fold and curl are in t, which its depth of 1.5 cm turns into millimetres).
         EXPECT_GT(deviation.x + deviation.y + deviation.z, 0.0f) << name;
-        EXPECT_LT(deviation.x, 0.3f) << name;
+        EXPECT_LT(deviation.x, 0.5f) << name;
         EXPECT_LT(deviation.y, 0.3f) << name;
         EXPECT_LE(deviation.z, 1.0f) << name;
     }
@@ -126,7 +129,7 @@ TEST(CoarserProceduralMesh, NoneForAMeshNotFromAGeneratorOrWithoutACoarserLevel)
     EXPECT_FALSE(buildCoarserProceduralMesh(leaf, fine).has_value());
     fine.source = "fallback";
     EXPECT_FALSE(buildCoarserProceduralMesh(leaf, fine).has_value());
-    // Declared at the generator's coarsest level already: nothing has half its triangles.
+    // Declared at the generator's coarsest level already: no level has its share of them.
     grammar::ShapeInfo least = leaf;
     least.triangles = 1;
     const TerminalMesh coarsest = buildProceduralMesh(least).value();
