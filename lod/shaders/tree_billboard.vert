@@ -77,7 +77,8 @@ void main() {
     vec3 right = normalize(cross(up, toCamera));
     up = cross(toCamera, right);
     vec2 rectLo, rectHi;
-    vec3 boxLo = vBase + speciesBoxes[2u * vSpecies].xyz, boxHi = vBase + speciesBoxes[2u * vSpecies + 1u].xyz;
+    vec3 boxLo = vBase + speciesBoxes[2u * vSpecies].xyz;
+    vec3 boxHi = vBase + speciesBoxes[2u * vSpecies + 1u].xyz;
     boxRectangle(boxLo, boxHi, centre, right, up, sphere.w, rectLo, rectHi);
     // The rectangle on screen, and the depth of the sphere's nearest point along the view
     // axis: the tree's surface lies behind it. Skipped when the sphere reaches the near plane

@@ -146,16 +146,18 @@ export class TerminalBatch {
         const perMetre = distances.coarse ?? 0;
         // The distances change with the viewport's height and the profile, which the view's key
         // does not hold.
-        const distanceKey = `${distances.lod3} ${distances.lod2} ${perMetre}`;
+        const last = this.lastDistances;
+        const sameDistances =
+            last !== null && last[0] === distances.lod3 && last[1] === distances.lod2 && last[2] === perMetre;
         const occlusionVersion = occlusion ? occlusion.version : null;
-        if (cutVersion === this.lastCut && viewKey === this.lastViewKey && distanceKey === this.lastDistances &&
+        if (cutVersion === this.lastCut && viewKey === this.lastViewKey && sameDistances &&
             occlusionVersion === this.lastOcclusion && !movedEnough(this.lastCamera, camera, distances.lod3) &&
             !(view && turnedEnough(this.lastForward, view.forward)))
             return;
         this.lastOcclusion = occlusionVersion;
         this.lastCamera = camera.slice();
         this.lastCut = cutVersion;
-        this.lastDistances = distanceKey;
+        this.lastDistances = [distances.lod3, distances.lod2, perMetre];
         this.lastViewKey = viewKey;
         this.lastForward = view ? view.forward.slice() : null;
         // How far the camera may move before the lists are sorted again.

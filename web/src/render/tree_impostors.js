@@ -7,9 +7,9 @@
 // pixels show nothing. It blends the four grid views around the direction to the camera by
 // their bilinear weights, each sampled where the quad's point lies in that view's frame. It
 // writes the depth the views store, so a billboard sinks into the ground and behind buildings
-// where the tree does, not where its flat quad would. As in the native renderer, coverage becomes the sample
-// mask on a multisampled canvas (alpha to coverage) and is a cutout at one half otherwise; the
-// stored normals light it as the meshes are lit (lights.js).
+// where the tree does, not where its flat quad would. As in the native renderer, coverage
+// becomes the sample mask on a multisampled canvas (alpha to coverage) and is a cutout at one
+// half otherwise; the stored normals light it as the meshes are lit (lights.js).
 import * as THREE from 'three';
 
 import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
