@@ -1,5 +1,6 @@
 // The frame's base volumes (LOD0, LOD1 and the shells under terminal sets), ring by ring.
 #include "city_renderer_programs.h"
+#include "hexlod/lod/building_order.h"
 #include "hexlod/lod/cull_inputs.h"
 #include "hexlod/lod/occlusion_tests.h"
 #include "hexlod/render/gl_api.h"
@@ -37,9 +38,8 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
             // Building by building too: at street level a batch that shows at all often shows
             // a few of its buildings only, and with multisampling llvmpipe shades every
             // fragment it rasterises, hidden or not (it skips hidden ones only at one sample).
-            draw.runs = test && !tiles.empty()
-                            ? visibleBuildingRuns(draw, pose.position, occlusion, tiles, stats)
-                            : std::vector<glm::uvec2>{{0u, draw.mesh->indexCount}};
+            draw.runs = visibleBuildingRuns(draw, pose.position, occlusion,
+                                            test && !tiles.empty() ? &tiles : nullptr, stats);
         }
         drawVolumes(draws, pose.position, stats, timer);
         drawnSinceTiles = drawnSinceTiles || !draws.empty();
@@ -65,21 +65,22 @@ bool CityRenderer::volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera
 
 std::vector<glm::uvec2> CityRenderer::visibleBuildingRuns(const VolumeDraw& draw, const glm::dvec3& camera,
                                                           const shared::CullFrame& occlusion,
-                                                          const std::vector<float>& tiles,
+                                                          const std::vector<float>* tiles,
                                                           FrameStats& stats) const {
+    const std::vector<render::VolumeBuilding>& buildings = draw.mesh->buildings;
+    if (buildings.empty()) return {{0u, draw.mesh->indexCount}};
     const glm::vec3 origin(draw.mesh->cellOrigin - camera);
-    std::vector<glm::uvec2> runs;
-    for (const render::VolumeBuilding& building : draw.mesh->buildings) {
-        if (tilesHideBox(occlusion, &tiles, origin + building.boundsMin, origin + building.boundsMax)) {
+    std::vector<uint32_t> kept;
+    kept.reserve(buildings.size());
+    for (uint32_t b = 0; b < buildings.size(); ++b) {
+        if (tiles && tilesHideBox(occlusion, tiles, origin + buildings[b].boundsMin,
+                                  origin + buildings[b].boundsMax)) {
             ++stats.volumeBuildingsOccluded;
             continue;
         }
-        if (!runs.empty() && runs.back().x + runs.back().y == building.firstIndex)
-            runs.back().y += building.indexCount;
-        else
-            runs.emplace_back(building.firstIndex, building.indexCount);
+        kept.push_back(b);
     }
-    return runs;
+    return nearestFirstRuns(buildings, kept, origin);
 }
 
 // One draw per run; a single run is the common case (the whole mesh, or every building left).

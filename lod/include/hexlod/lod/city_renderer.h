@@ -146,7 +146,8 @@ private:
         // when it is resident, else the cell's) the depth of the rings before it does not hide.
         uint8_t ring;
         // Set by drawVolumeRings: the runs (first index, count) of the mesh to draw, the whole
-        // mesh or, against the rings before, the buildings left in view, adjacent ones merged.
+        // mesh or its buildings left in view by the rings before, nearest first, adjacent ones
+        // merged.
         std::vector<glm::uvec2> runs = {};
     };
     static constexpr uint8_t kVolumeRings = 3;
@@ -166,11 +167,11 @@ private:
     // Whether the tiles hide the batch's box: its mesh's bounds when resident, else its cell's.
     bool volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera, const shared::CullFrame& occlusion,
                       const std::vector<float>& tiles) const;
-    // The runs of draw.mesh's buildings the tiles leave in view (none: all hidden); counts the
-    // hidden ones into stats.
+    // The runs of draw.mesh's buildings the tiles leave in view (null tiles: all of them; none:
+    // all hidden), nearest first (building_order.h); counts the hidden ones into stats.
     std::vector<glm::uvec2> visibleBuildingRuns(const VolumeDraw& draw, const glm::dvec3& camera,
                                                 const shared::CullFrame& occlusion,
-                                                const std::vector<float>& tiles, FrameStats& stats) const;
+                                                const std::vector<float>* tiles, FrameStats& stats) const;
     void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats,
                      PassTimer& timer);
     static void drawRuns(const VolumeDraw& draw, FrameStats& stats);

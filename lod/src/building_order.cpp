@@ -1,0 +1,33 @@
+#include "hexlod/lod/building_order.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <utility>
+
+namespace hexlod::lod {
+
+std::vector<glm::uvec2> nearestFirstRuns(const std::vector<render::VolumeBuilding>& buildings,
+                                         const std::vector<uint32_t>& kept, const glm::vec3& origin) {
+    std::vector<std::pair<float, uint32_t>> order;
+    order.reserve(kept.size());
+    for (const uint32_t b : kept) {
+        // The camera is the origin: per axis, how far the box lies beyond it (0 within).
+        const glm::vec3 lo = origin + buildings[b].boundsMin, hi = origin + buildings[b].boundsMax;
+        const glm::vec3 gap = glm::max(glm::max(lo, -hi), glm::vec3(0.0f));
+        order.emplace_back(glm::dot(gap, gap), b);
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<glm::uvec2> runs;
+    for (const auto& [distance, b] : order) {
+        const render::VolumeBuilding& building = buildings[b];
+        if (!runs.empty() && runs.back().x + runs.back().y == building.firstIndex)
+            runs.back().y += building.indexCount;
+        else
+            runs.emplace_back(building.firstIndex, building.indexCount);
+    }
+    return runs;
+}
+
+} // namespace hexlod::lod
