@@ -20,12 +20,28 @@ bool DepthTiles::init(uint32_t width, uint32_t height, uint32_t samples, std::st
     samples_ = samples;
     columns_ = (width + kDepthTileSize - 1) / kDepthTileSize;
     rows_ = (height + kDepthTileSize - 1) / kDepthTileSize;
+    const auto tilesAt = [&](uint32_t level) {
+        const uint32_t size = 1u << level;
+        return uint64_t((columns_ + size - 1) / size) * ((rows_ + size - 1) / size);
+    };
+    levels_ = 1;
+    while (tilesAt(levels_ - 1) > kDepthTileLookups) ++levels_;
+    const uint32_t align = 1u << (levels_ - 1);
+    paddedColumns_ = (columns_ + align - 1) / align * align;
+    paddedRows_ = (rows_ + align - 1) / align * align;
     render::ShaderLibrary library = lodShaderLibrary();
     program_ = render::ShaderProgram::build(library, {{render::ShaderStage::Compute, "depth_tiles.comp"}},
                                             samples > 1 ? "#define MULTISAMPLED 1\n" : "", error);
     if (!program_.valid()) return false;
+    reduceProgram_ = render::ShaderProgram::build(
+        library, {{render::ShaderStage::Compute, "depth_tiles_reduce.comp"}}, "", error);
+    if (!reduceProgram_.valid()) return false;
     gl::glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
-    gl::glTextureStorage2D(texture_, 1, GL_R32F, GLsizei(columns_), GLsizei(rows_));
+    gl::glTextureStorage2D(texture_, GLsizei(levels_), GL_R32F, GLsizei(paddedColumns_),
+                           GLsizei(paddedRows_));
+    // texelFetch reads any level only with a mipmap filter.
+    gl::glTextureParameteri(texture_, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    gl::glTextureParameteri(texture_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl::glCreateBuffers(1, &counts_);
     gl::glNamedBufferStorage(counts_, kCountBytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
     return true;
@@ -43,9 +59,28 @@ std::array<uint32_t, size_t(TileTest::Count)> DepthTiles::dropped() {
 }
 
 std::vector<float> DepthTiles::read() const {
-    std::vector<float> tiles(size_t(columns_) * rows_);
-    gl::glGetTextureImage(texture_, 0, GL_RED, GL_FLOAT, GLsizei(tiles.size() * sizeof(float)), tiles.data());
+    const std::vector<float> padded = readLevel(0);
+    std::vector<float> tiles;
+    tiles.reserve(size_t(columns_) * rows_);
+    for (uint32_t row = 0; row < rows_; ++row) {
+        const auto first = padded.begin() + ptrdiff_t(row) * paddedColumns_;
+        tiles.insert(tiles.end(), first, first + columns_);
+    }
     return tiles;
+}
+
+std::vector<float> DepthTiles::readLevel(uint32_t level) const {
+    std::vector<float> tiles(size_t(paddedColumns_ >> level) * (paddedRows_ >> level));
+    gl::glGetTextureImage(texture_, GLint(level), GL_RED, GL_FLOAT, GLsizei(tiles.size() * sizeof(float)),
+                          tiles.data());
+    return tiles;
+}
+
+uint64_t DepthTiles::byteSize() const {
+    uint64_t bytes = readback_.byteSize();
+    for (uint32_t level = 0; level < levels_; ++level)
+        bytes += uint64_t(paddedColumns_ >> level) * (paddedRows_ >> level) * sizeof(float);
+    return bytes;
 }
 
 void DepthTiles::build(uint32_t depthTexture) const {
@@ -55,7 +90,20 @@ void DepthTiles::build(uint32_t depthTexture) const {
     program_.set("tileSize", kDepthTileSize);
     program_.set("samples", samples_);
     gl::glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    gl::glDispatchCompute((columns_ + kLocalSize - 1) / kLocalSize, (rows_ + kLocalSize - 1) / kLocalSize, 1);
+    const auto dispatch = [](uint32_t columns, uint32_t rows) {
+        gl::glDispatchCompute((columns + kLocalSize - 1) / kLocalSize, (rows + kLocalSize - 1) / kLocalSize,
+                              1);
+    };
+    dispatch(paddedColumns_, paddedRows_);
+    if (levels_ > 1) {
+        reduceProgram_.use();
+        for (uint32_t level = 1; level < levels_; ++level) {
+            gl::glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            gl::glBindImageTexture(0, texture_, GLint(level - 1), GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+            gl::glBindImageTexture(1, texture_, GLint(level), GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+            dispatch(paddedColumns_ >> level, paddedRows_ >> level);
+        }
+    }
     gl::glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     // The depth texture stays attached to the target being drawn: left bound, any later
     // program sampling unit 0 would read it while writing it.
@@ -69,6 +117,8 @@ void DepthTiles::bind(const render::ShaderProgram& program, uint32_t unit, TileT
     program.set("depthTileCount", uint32_t(test));
     program.set("depthTiles", int(unit));
     program.set("depthTileSize", kDepthTileSize);
+    program.set("depthTileLevels", levels_);
+    program.set("depthTileLookups", kDepthTileLookups);
     program.set("depthTilesEnabled", uint32_t(enabled));
 }
 
