@@ -7,6 +7,7 @@
 // Invariants (abort on violation, so libFuzzer keeps the input): the handler answers exactly
 // once and within 10 s; the status is a real one; every error reply is a JSON object with
 // a reason; a JSON 200 reply parses as JSON.
+#include "../scratch_folder.h"
 #include "fuzz_check.h"
 
 #include "hexlod/scene/scene_builder.h"
@@ -47,8 +48,8 @@ server::ShapeAssets shapeAssets() {
 
 struct Fixture {
     Fixture() {
-        std::string folder = (std::filesystem::temp_directory_path() / "hexlod-fuzz-XXXXXX").string();
-        check(mkdtemp(folder.data()) != nullptr);
+        check(!scratch.path().empty());
+        const std::string folder = scratch.path().string();
         const std::string configs = HEXLOD_CONFIGS_DIR;
         const nlohmann::json config = {
             {"name", "fuzz"},
@@ -76,6 +77,8 @@ struct Fixture {
             *service,
             server::ApiOptions{"", folder + "/no-viewer", [](std::function<void()> job) { job(); }});
     }
+    // First, so that it goes last: after the service has closed its journal in it.
+    testing::ScratchFolder scratch{"hexlod-fuzz"};
     std::unique_ptr<server::SceneService> service;
     std::unique_ptr<server::ServiceApi> api;
 };

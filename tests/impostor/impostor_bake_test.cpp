@@ -1,5 +1,6 @@
 // Baking, storing and reconstructing impostors of a small window on llvmpipe.
 #include "../render/gl_fixture.h"
+#include "../scratch_folder.h"
 #include "test_geometry.h"
 
 #include "hexlod/impostor/impostor_reconstruction.h"
@@ -37,13 +38,6 @@ Image innerTile(const Image& atlas, const ViewLayout& layout, uint32_t view) {
             std::copy_n(atlas.at(origin.x + layout.padding + x, origin.y + layout.padding + y), 4,
                         tile.at(x, y));
     return tile;
-}
-
-std::string scratchDir(const std::string& name) {
-    auto dir = std::filesystem::temp_directory_path() /
-               ("hexlod-impostor-" + name + "-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    return dir.string();
 }
 
 class ImpostorBakeTest : public render::GlTest {
@@ -105,7 +99,8 @@ TEST_F(ImpostorBakeTest, ViewsHoldCoverageNormalsAndDepthAndLeaveTheirPaddingEmp
 }
 
 TEST_F(ImpostorBakeTest, TheExrRoundTripIsBitExact) {
-    ImpostorStore store(scratchDir("roundtrip"));
+    const hexlod::testing::ScratchFolder folder("hexlod-impostor-roundtrip");
+    ImpostorStore store(folder.file("store"));
     uint64_t bytes = 0;
     std::string error;
     ASSERT_TRUE(store.save(atlas, bytes, error)) << error;
@@ -122,7 +117,8 @@ TEST_F(ImpostorBakeTest, TheExrRoundTripIsBitExact) {
 }
 
 TEST_F(ImpostorBakeTest, AnotherKeyOrLayoutMissesTheStore) {
-    ImpostorStore store(scratchDir("keys"));
+    const hexlod::testing::ScratchFolder folder("hexlod-impostor-keys");
+    ImpostorStore store(folder.file("store"));
     uint64_t bytes = 0;
     std::string error;
     ASSERT_TRUE(store.save(atlas, bytes, error)) << error;
@@ -136,7 +132,8 @@ TEST_F(ImpostorBakeTest, AnotherKeyOrLayoutMissesTheStore) {
 }
 
 TEST_F(ImpostorBakeTest, CorruptTruncatedAndForeignFilesAreDetectedAndRemoved) {
-    ImpostorStore store(scratchDir("corrupt"));
+    const hexlod::testing::ScratchFolder folder("hexlod-impostor-corrupt");
+    ImpostorStore store(folder.file("store"));
     const std::string path = store.pathFor("window", atlas.contentKey);
     uint64_t bytes = 0;
     std::string error, reason;

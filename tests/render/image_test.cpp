@@ -1,4 +1,5 @@
 // Image files and metrics: PNG and EXR round trips, PSNR on known errors, SSIM's range.
+#include "../scratch_folder.h"
 #include "hexlod/render/image_io.h"
 #include "hexlod/render/image_metrics.h"
 
@@ -16,9 +17,8 @@ namespace hexlod::render {
 namespace {
 
 std::string scratch(const std::string& name) {
-    auto dir = std::filesystem::temp_directory_path() / ("hexlod-image-test-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    return (dir / name).string();
+    static const testing::ScratchFolder folder("hexlod-image-test");
+    return folder.file(name);
 }
 
 Image gradient(uint32_t w, uint32_t h) {

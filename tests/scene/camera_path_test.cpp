@@ -1,4 +1,5 @@
 // Camera paths: parsing with named errors, interpolation through every keyframe, sampling.
+#include "../scratch_folder.h"
 #include "hexlod/scene/camera_path.h"
 #include "hexlod/scene/scene_config.h"
 
@@ -128,8 +129,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "bad.json: interpolation: expected \"catmull_rom\" or \"linear\", got \"cubic\""}));
 
 TEST(LodProfileFileTest, ReadsOverDefaultsAndNamesBadFields) {
-    auto dir = std::filesystem::temp_directory_path() / ("hexlod-lod-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
+    const testing::ScratchFolder folder("hexlod-lod");
+    const std::filesystem::path& dir = folder.path();
     std::string good = (dir / "good.json").string(), bad = (dir / "bad.json").string(), error;
     std::ofstream(good) << R"({"max_screen_space_error": 4})";
     std::ofstream(bad) << R"({"hysteresis": 1.0})";
