@@ -5,7 +5,9 @@
 #   bench/walks.sh BUILD_DIR [OUT_DIR]
 # FRAMES (default 6) frames per path at 1280x720; REFERENCE_FRAMES (default 4) for the LOD4
 # reference, which is run where REFERENCE lists the scene (default: default; the thesis city at
-# LOD4 is over 1e9 triangles a frame, minutes per frame on llvmpipe).
+# LOD4 is over 1e9 triangles a frame, minutes per frame on llvmpipe). The default city has no
+# disk tier; the thesis city reads and fills its own (configs/thesis-city.json's disk_path), so
+# for rows from an empty disk remove out/cache/thesis-city first.
 set -euo pipefail
 build=${1:?usage: walks.sh BUILD_DIR [OUT_DIR]}
 out=${2:-out/bench/walks}
