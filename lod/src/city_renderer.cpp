@@ -419,7 +419,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         setCoarseMeshes(inputs.frame, options_.lod, pose.fovY, options_.height);
     std::vector<float> occlusionTiles;
     if (options_.dropHidden && (!inputs.batches.empty() || !billboards.empty())) {
-        depthTiles_.build(target_.depthTexture());
+        depthTiles_.build(target_.depthTexture(), false);
         occlusionTiles = depthTiles_.read();
         setOcclusion(inputs.frame, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
                      options_.height, depthTiles_.columns(), depthTiles_.rows(), kDepthTileSize);
@@ -447,7 +447,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         stats.treeBillboards = submitted;
         stats.treePoints = points;
         gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
-        depthTiles_.build(target_.depthTexture());
+        depthTiles_.build(target_.depthTexture(), true);
         depthTiles_.bind(trees_.program(), kDepthTilesUnit, TileTest::TreeBillboards, options_.dropHidden);
         trees_.program().set("alphaToCoverage", uint32_t(options_.samples > 1));
         if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
@@ -554,7 +554,7 @@ void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTim
     const void* commands = reinterpret_cast<const void*>(uintptr_t(shapes) * kLod4CommandStride);
     for (const render::ShaderProgram* program : {&programs_->impostorWall, &programs_->impostor}) {
         // LOD3 writes its depth: its entries are tested against everything drawn before it.
-        if (program == &programs_->impostor) depthTiles_.build(target_.depthTexture());
+        if (program == &programs_->impostor) depthTiles_.build(target_.depthTexture(), true);
         program->use();
         impostorTextures_.bind(*program, 0);
         program->set("centralView", centralView_);

@@ -83,7 +83,7 @@ uint64_t DepthTiles::byteSize() const {
     return bytes;
 }
 
-void DepthTiles::build(uint32_t depthTexture) const {
+void DepthTiles::build(uint32_t depthTexture, bool coarserLevels) {
     program_.use();
     gl::glBindTextureUnit(0, depthTexture);
     program_.set("depthTarget", 0);
@@ -95,9 +95,10 @@ void DepthTiles::build(uint32_t depthTexture) const {
                               1);
     };
     dispatch(paddedColumns_, paddedRows_);
-    if (levels_ > 1) {
+    builtLevels_ = coarserLevels ? levels_ : 1;
+    if (builtLevels_ > 1) {
         reduceProgram_.use();
-        for (uint32_t level = 1; level < levels_; ++level) {
+        for (uint32_t level = 1; level < builtLevels_; ++level) {
             gl::glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             gl::glBindImageTexture(0, texture_, GLint(level - 1), GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
             gl::glBindImageTexture(1, texture_, GLint(level), GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -117,7 +118,7 @@ void DepthTiles::bind(const render::ShaderProgram& program, uint32_t unit, TileT
     program.set("depthTileCount", uint32_t(test));
     program.set("depthTiles", int(unit));
     program.set("depthTileSize", kDepthTileSize);
-    program.set("depthTileLevels", levels_);
+    program.set("depthTileLevels", builtLevels_);
     program.set("depthTileLookups", kDepthTileLookups);
     program.set("depthTilesEnabled", uint32_t(enabled));
 }

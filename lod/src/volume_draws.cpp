@@ -22,7 +22,7 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
         if (draws.empty()) continue;
         if (test && (drawnSinceTiles || !tiles.empty())) {
             if (drawnSinceTiles) {
-                depthTiles_.build(target_.depthTexture());
+                depthTiles_.build(target_.depthTexture(), false);
                 tiles = depthTiles_.read();
                 drawnSinceTiles = false;
             }

@@ -58,7 +58,7 @@ TEST_F(DepthTilesTest, EveryCoarserTileHoldsTheFarthestDepthOfTheTilesUnderIt) {
         DepthTiles tiles;
         std::string error;
         ASSERT_TRUE(tiles.init(width, height, 1, error)) << error;
-        tiles.build(depthTexture(width, height, depths));
+        tiles.build(depthTexture(width, height, depths), true);
         const std::string what = std::to_string(width) + " x " + std::to_string(height);
 
         // Enough levels that the coarsest covers the target in kDepthTileLookups tiles.
@@ -119,7 +119,7 @@ TEST_F(DepthTilesTest, AScreenWideRectangleIsDroppedWhereTheTilesHideItAndKeptWh
     std::string error;
     ASSERT_TRUE(tiles.init(width, height, 1, error)) << error;
     ASSERT_GT(tiles.levels(), 1u);
-    tiles.build(depthTexture(width, height, depths));
+    const uint32_t depth = depthTexture(width, height, depths);
 
     render::ShaderLibrary library = lodShaderLibrary();
     library.add("probe.vert", kProbe);
@@ -149,6 +149,7 @@ TEST_F(DepthTilesTest, AScreenWideRectangleIsDroppedWhereTheTilesHideItAndKeptWh
          false},
         {"a small rectangle behind the wall", {-0.5f, -0.5f, -0.45f, -0.45f}, 0.4f, true},
     };
+    constexpr size_t kQuarterBehind = 1;
     std::vector<glm::vec4> rectangles;
     std::vector<float> nearest;
     for (const Case& c : cases) {
@@ -171,20 +172,36 @@ TEST_F(DepthTilesTest, AScreenWideRectangleIsDroppedWhereTheTilesHideItAndKeptWh
     // A draw needs a target, even one that rasterises nothing.
     render::Framebuffer target;
     ASSERT_TRUE(render::Framebuffer::create({1, 1, {GL_RGBA8}, false, 1}, target, error)) << error;
-    target.bind();
-    probe.use();
-    tiles.bind(probe, 0, TileTest::Lod3Impostors, true);
     uint32_t vao = 0;
     gl::glCreateVertexArrays(1, &vao);
-    gl::glBindVertexArray(vao);
-    gl::glEnable(GL_RASTERIZER_DISCARD);
-    gl::glDrawArrays(GL_POINTS, 0, GLsizei(nearest.size()));
-    gl::glDisable(GL_RASTERIZER_DISCARD);
-    gl::glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<uint32_t> hidden(nearest.size());
-    gl::glGetNamedBufferSubData(buffers[3], 0, GLsizeiptr(hidden.size() * sizeof(uint32_t)), hidden.data());
-    for (size_t i = 0; i < hidden.size(); ++i) EXPECT_EQ(hidden[i] != 0, cases[i].hidden) << cases[i].what;
-    gl::glBindVertexArray(0);
+    // Which rectangles the vertex-stage test finds hidden, against the tiles as built last.
+    const auto probeHidden = [&] {
+        target.bind();
+        probe.use();
+        tiles.bind(probe, 0, TileTest::Lod3Impostors, true);
+        gl::glBindVertexArray(vao);
+        gl::glEnable(GL_RASTERIZER_DISCARD);
+        gl::glDrawArrays(GL_POINTS, 0, GLsizei(nearest.size()));
+        gl::glDisable(GL_RASTERIZER_DISCARD);
+        gl::glBindVertexArray(0);
+        gl::glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::vector<uint32_t> hidden(nearest.size());
+        gl::glGetNamedBufferSubData(buffers[3], 0, GLsizeiptr(hidden.size() * sizeof(uint32_t)),
+                                    hidden.data());
+        return hidden;
+    };
+
+    tiles.build(depth, true);
+    const std::vector<uint32_t> withLevels = probeHidden();
+    for (size_t i = 0; i < withLevels.size(); ++i)
+        EXPECT_EQ(withLevels[i] != 0, cases[i].hidden) << cases[i].what;
+    // Built for the cull pass alone, the tiles have no coarser levels to test on: the quarter
+    // is too large to look up and counts as visible; the rest is decided as before.
+    tiles.build(depth, false);
+    const std::vector<uint32_t> finestOnly = probeHidden();
+    for (size_t i = 0; i < finestOnly.size(); ++i)
+        EXPECT_EQ(finestOnly[i] != 0, cases[i].hidden && i != kQuarterBehind)
+            << cases[i].what << ", finest only";
     gl::glDeleteVertexArrays(1, &vao);
     gl::glDeleteBuffers(4, buffers);
 }

@@ -42,10 +42,13 @@ public:
     // Zeroes the counts of dropped rectangles (once a frame, before the passes).
     void clearCounts() const;
     // Reduces `depthTexture` (the target's depth attachment) into the tiles. No draw may be
-    // in progress into it; the result is visible to later texture fetches.
-    void build(uint32_t depthTexture) const;
+    // in progress into it; the result is visible to later texture fetches. `coarserLevels`
+    // reduces the coarser levels too: only the vertex-stage test reads them (bind), while the
+    // cull pass and the CPU copy (read) read the finest alone.
+    void build(uint32_t depthTexture, bool coarserLevels);
     // Binds the tiles to texture unit `unit` and the counts, and sets depth_tiles.glsl's
     // uniforms of `program` for pass `test`; `enabled` false makes every rectangle visible.
+    // The test reads the coarser levels only when the last build reduced them.
     void bind(const render::ShaderProgram& program, uint32_t unit, TileTest test, bool enabled) const;
     // Rectangles each test dropped since clearCounts(), by TileTest. Waits for the GL.
     std::array<uint32_t, size_t(TileTest::Count)> dropped();
@@ -71,6 +74,7 @@ private:
     render::ShaderProgram program_, reduceProgram_;
     uint32_t texture_ = 0, counts_ = 0, columns_ = 0, rows_ = 0, samples_ = 1;
     uint32_t levels_ = 1, paddedColumns_ = 0, paddedRows_ = 0;
+    uint32_t builtLevels_ = 1; // the levels the last build reduced
     render::BufferReadback readback_;
 };
 
