@@ -29,7 +29,3 @@ DrawEntry drawEntry(uint index) {
     e.shape = t.shapeAndDepth & 0xffffu;
     return e;
 }
-
-// Whether an entry is pure LOD2 (the central view on the wall plane, impostor_wall.*) rather
-// than LOD3 or the LOD2-LOD3 blend (ray-cast, impostor_terminal.*).
-bool isWallImpostor(DrawEntry e) { return e.transition < 0.0; }

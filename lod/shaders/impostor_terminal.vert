@@ -1,10 +1,10 @@
 #version 450 core
-// LOD3 and the LOD3 -> LOD2 blend: each such draw-list entry as one screen rectangle bounding
-// the projection of its mesh bounds. The fragments ray-cast that box and then the shape's
-// baked views (impostor_terminal.frag), writing the depth they find. Pure LOD2 entries draw
-// nothing here: impostor_wall.* draws them with the GL's depth, which the GL can test before
-// shading (a shader that writes depth is tested after it, on every covered pixel), so LOD3
-// entries that what was drawn before them hides are dropped whole (depth_tiles.glsl).
+// LOD3 and the LOD3 -> LOD2 blend: each entry of the LOD3 draw lists as one screen rectangle
+// bounding the projection of its mesh bounds. The fragments ray-cast that box and then the
+// shape's baked views (impostor_terminal.frag), writing the depth they find. Pure LOD2 entries
+// have lists of their own: impostor_wall.* draws them with the GL's depth, which the GL can
+// test before shading (a shader that writes depth is tested after it, on every covered pixel),
+// so LOD3 entries that what was drawn before them hides are dropped whole (depth_tiles.glsl).
 #include "gpu_types.h"
 #include "frame.glsl"
 #include "draw_list_entry.glsl"
@@ -23,10 +23,6 @@ flat out float vNearestDepth; // window depth of the box's nearest point
 
 void main() {
     DrawEntry e = drawEntry(pulledRecord());
-    if (isWallImpostor(e)) {
-        gl_Position = kNoVertex;
-        return;
-    }
     vBoxLo = shapes[e.shape].boundsMin.xyz * e.scope;
     vBoxHi = shapes[e.shape].boundsMax.xyz * e.scope;
 

@@ -1,7 +1,7 @@
 #version 450 core
 // LOD2: each pure LOD2 draw-list entry as its mesh bounds' rectangle on the wall plane (z = 0),
 // where the central view lies. The GL rasterises the plane's own depth, so occluded impostors
-// fail the depth test before their fragments are shaded. Other entries draw nothing here
+// fail the depth test before their fragments are shaded. LOD3 entries have lists of their own
 // (impostor_terminal.*).
 #include "gpu_types.h"
 #include "frame.glsl"
@@ -16,10 +16,6 @@ flat out uint vShape;
 
 void main() {
     DrawEntry e = drawEntry(pulledRecord());
-    if (!isWallImpostor(e)) {
-        gl_Position = kNoVertex;
-        return;
-    }
     GpuShape shape = shapes[e.shape];
     int corner = pulledCorner();
     vec2 unit = vec2((corner & 1) != 0 ? shape.boundsMax.x : shape.boundsMin.x,

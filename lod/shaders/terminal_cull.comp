@@ -18,6 +18,8 @@ layout(std430, binding = 5) writeonly buffer ListBuffer { GpuTerminal lists[]; }
 layout(std430, binding = 10) readonly buffer TreeBuffer { vec4 trees[]; }; // by tree id: position, species
 layout(std430, binding = 11) buffer OccludedBuffer { uint occludedTerminals; };
 layout(std430, binding = 12) readonly buffer CoarseBuffer { vec4 coarse[]; }; // per shape, see meshShape
+layout(std430, binding = 13) writeonly buffer Lod3ListBuffer { GpuTerminal lod3Lists[]; };
+layout(std430, binding = 15) readonly buffer Lod3BaseBuffer { uint lod3Bases[]; }; // per shape
 
 uniform uint workgroupCount;
 uniform sampler2D occlusionTiles; // the farthest depth of each tile, when frame.occlusion.x > 0
@@ -65,9 +67,9 @@ void main() {
         lists[info.x + info.y - 1u - atomicAdd(counters[shape].x, 1u)] = t;
     } else if (lod == HEXLOD_LOD4) {
         lists[info.x + atomicAdd(counters[shape].x, 1u)] = t;
+    } else if (lod == HEXLOD_LOD3) {
+        lod3Lists[lod3Bases[shape] + atomicAdd(counters[shape].z, 1u)] = t;
     } else {
-        lists[info.x + info.y - 1u - atomicAdd(counters[shape].y, 1u)] = t;
-        if (lod == HEXLOD_LOD3) atomicAdd(counters[shape].z, 1u);
-        else atomicAdd(counters[shape].w, 1u);
+        lists[info.x + info.y - 1u - atomicAdd(counters[shape].w, 1u)] = t;
     }
 }

@@ -518,7 +518,8 @@ void CityRenderer::countCulledTerminals(FrameStats& stats) {
         stats.terminalsPerLod[3] += counters[s].z;
         stats.terminalsPerLod[2] += counters[s].w;
         // An impostor is one rectangle: two triangles.
-        stats.triangles += uint64_t(counters[s].x) * shapes_.triangles(s) + uint64_t(counters[s].y) * 2;
+        stats.triangles +=
+            uint64_t(counters[s].x) * shapes_.triangles(s) + (uint64_t(counters[s].z) + counters[s].w) * 2;
         stats.draws += (counters[s].x > 0) + (counters[s].z > 0) + (counters[s].w > 0);
     }
 }
@@ -545,26 +546,29 @@ void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTim
     if (shapes == 0 || !programs_->impostor.valid() || !impostorsDrawn()) return;
     gl::glBindVertexArray(impostorVao_);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
-    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, cull_.listBuffer());
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, sphereBuffer_);
     if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-    // Both programs walk every impostor entry, each drawing its own kind: LOD2 on the wall
-    // plane first, depth-tested before shading, then the ray-cast LOD3 entries.
-    const void* commands = reinterpret_cast<const void*>(uintptr_t(shapes) * kLod4CommandStride);
+    // LOD2 on the wall plane first, depth-tested before shading, then the ray-cast LOD3
+    // entries, each over draw lists of its own.
+    uintptr_t commands = uintptr_t(shapes) * kLod4CommandStride;
     for (const render::ShaderProgram* program : {&programs_->impostorWall, &programs_->impostor}) {
+        const bool lod3 = program == &programs_->impostor;
         // LOD3 writes its depth: its entries are tested against everything drawn before it.
-        if (program == &programs_->impostor) depthTiles_.build(target_.depthTexture(), true);
+        if (lod3) depthTiles_.build(target_.depthTexture(), true);
+        gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, lod3 ? cull_.lod3ListBuffer() : cull_.listBuffer());
         program->use();
         impostorTextures_.bind(*program, 0);
         program->set("centralView", centralView_);
         program->set("alphaToCoverage", uint32_t(options_.samples > 1));
-        if (program == &programs_->impostor) {
+        if (lod3) {
             program->set("inverseViewProjection", inverseViewProjection);
             program->set("parallaxIterations", options_.parallaxIterations);
             depthTiles_.bind(*program, kDepthTilesUnit, TileTest::Lod3Impostors, options_.dropHidden);
         }
-        gl::glMultiDrawArraysIndirect(GL_TRIANGLES, commands, GLsizei(shapes), kImpostorCommandStride);
+        gl::glMultiDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(commands), GLsizei(shapes),
+                                      kImpostorCommandStride);
+        commands += uintptr_t(shapes) * kImpostorCommandStride;
     }
     gl::glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gl::glBindVertexArray(0);

@@ -77,6 +77,7 @@ CullPages selectCullPages(const CullInputs& inputs) {
     DrawListLayout& layout = out.layout;
     layout.base.assign(inputs.shapeCount, 0);
     layout.capacity.assign(inputs.shapeCount, 0);
+    layout.lod3Capacity.assign(inputs.shapeCount, 0);
     // Per shape, its terminals in the pages that may hold LOD4 entries of a shape with an
     // impostor: the capacity of its coarse shape's own lists.
     std::vector<uint32_t> withinLod4(inputs.shapeCount, 0);
@@ -108,12 +109,16 @@ CullPages selectCullPages(const CullInputs& inputs) {
             out.terminals += count;
             const bool lod4 =
                 !batch.pageSpheres || pageMayHoldLod4((*batch.pageSpheres)[page], origin, inputs.frame);
+            const bool lod3 =
+                !batch.pageSpheres || pageMayHoldLod3((*batch.pageSpheres)[page], origin, inputs.frame);
             for (uint32_t r = first; r < first + count;) {
                 while (r >= shapeEnd && shape + 1 < perShape.size()) shapeEnd += perShape[++shape];
                 if (r >= shapeEnd) shapeEnd = records; // counts short of the records: the last shape
                 const uint32_t run = std::min(shapeEnd, first + count) - r;
                 layout.capacity[batch.shapeBase + shape] += run;
                 if (lod4) withinLod4[batch.shapeBase + shape] += run;
+                if (lod3 && inputs.shapeImpostor[batch.shapeBase + shape])
+                    layout.lod3Capacity[batch.shapeBase + shape] += run;
                 r += run;
             }
         }
@@ -130,9 +135,12 @@ CullPages selectCullPages(const CullInputs& inputs) {
         for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s)
             if (hasCoarseListsOfItsOwn(inputs, s))
                 layout.capacity.at(uint32_t(inputs.shapeCoarse[s].w)) = withinLod4[s];
+    layout.lod3Base.assign(inputs.shapeCount, 0);
     for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
         layout.base[s] = uint32_t(layout.total);
         layout.total += layout.capacity[s];
+        layout.lod3Base[s] = uint32_t(layout.lod3Total);
+        layout.lod3Total += layout.lod3Capacity[s];
     }
     for (uint32_t s = 0; s < inputs.shapeCoarse.size(); ++s) {
         if (inputs.shapeCoarse[s].w < 0.0f || hasCoarseListsOfItsOwn(inputs, s)) continue;

@@ -14,7 +14,7 @@ namespace {
 constexpr uint32_t kWorkgroupSize = 64; // cull_finalize.comp's local size
 
 // The GLSL binding of each buffer (terminal_cull.comp, cull_finalize.comp).
-constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7, 11, 12};
+constexpr uint32_t kBindings[] = {0, 1, 2, 3, 4, 5, 6, 7, 11, 12, 13, 15};
 // The occlusion tiles' texture unit: every pass after the cull binds its own textures.
 constexpr uint32_t kOcclusionUnit = 0;
 
@@ -104,20 +104,22 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     upload(kShapes, shapes.data(), shapes.size() * sizeof(glm::uvec4));
     upload(kMeshes, meshInfo.data(), meshInfo.size() * sizeof(glm::uvec4));
     upload(kCoarse, coarse.data(), coarse.size() * sizeof(glm::vec4));
+    upload(kLod3Bases, layout_.lod3Base.data(), layout_.lod3Base.size() * sizeof(uint32_t));
     reserve(kCounters, uint64_t(shapeCount_) * sizeof(glm::uvec4));
     gl::glClearNamedBufferSubData(buffers_[kCounters].id, GL_R32UI, 0,
                                   GLsizeiptr(shapeCount_ * sizeof(glm::uvec4)), GL_RED_INTEGER,
                                   GL_UNSIGNED_INT, nullptr);
     reserve(kLists, layout_.total * sizeof(gpu::GpuTerminal));
-    reserve(kCommands, uint64_t(shapeCount_) * (kLod4CommandStride + kImpostorCommandStride));
+    reserve(kLod3Lists, layout_.lod3Total * sizeof(gpu::GpuTerminal));
+    reserve(kCommands, uint64_t(shapeCount_) * (kLod4CommandStride + 2 * kImpostorCommandStride));
     reserve(kOccluded, sizeof(uint32_t));
     gl::glClearNamedBufferSubData(buffers_[kOccluded].id, GL_R32UI, 0, sizeof(uint32_t), GL_RED_INTEGER,
                                   GL_UNSIGNED_INT, nullptr);
 
     gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[kFrame].id);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, arena);
-    for (BufferIndex index :
-         {kBatches, kWorkgroups, kShapes, kCounters, kLists, kMeshes, kCommands, kOccluded, kCoarse}) {
+    for (BufferIndex index : {kBatches, kWorkgroups, kShapes, kCounters, kLists, kMeshes, kCommands,
+                              kOccluded, kCoarse, kLod3Lists, kLod3Bases}) {
         gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBindings[index], buffers_[index].id);
     }
     if (inputs.treeBuffer) gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, inputs.treeBuffer);
@@ -153,9 +155,17 @@ uint32_t GpuCull::readOccluded() {
 }
 
 std::vector<gpu::GpuTerminal> GpuCull::readLists() {
-    std::vector<gpu::GpuTerminal> lists(layout_.total);
-    readback_.read(buffers_[kLists].id, 0, lists.size() * sizeof(gpu::GpuTerminal), lists.data());
-    return lists;
+    return readRecords(kLists, layout_.total);
+}
+
+std::vector<gpu::GpuTerminal> GpuCull::readLod3Lists() {
+    return readRecords(kLod3Lists, layout_.lod3Total);
+}
+
+std::vector<gpu::GpuTerminal> GpuCull::readRecords(BufferIndex index, uint64_t count) {
+    std::vector<gpu::GpuTerminal> records(count);
+    readback_.read(buffers_[index].id, 0, records.size() * sizeof(gpu::GpuTerminal), records.data());
+    return records;
 }
 
 } // namespace hexlod::lod

@@ -66,14 +66,27 @@ bool pageMayBeVisible(const glm::vec4& sphere, const glm::vec3& origin, const sh
     return true;
 }
 
+namespace {
+
+// Whether some point of `sphere` lies nearer the camera than the square root of
+// `distanceSquared`. classifyTerminal compares its sphere's centre, held by this sphere, in
+// float: the same relative slack as pageMayBeVisible keeps this test the looser one.
+bool pageReachesWithin(const glm::vec4& sphere, const glm::vec3& origin, float distanceSquared) {
+    if (!(sphere.w < std::numeric_limits<float>::infinity())) return true;
+    const float distance = glm::length(glm::vec3(sphere) + origin);
+    const float nearest = distance - sphere.w - 1e-5f * distance;
+    return nearest <= 0.0f || nearest * nearest < distanceSquared;
+}
+
+} // namespace
+
 bool pageMayHoldLod4(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame) {
     // No LOD distances (frame.lodDistance.w == 0): every visible terminal is LOD4.
-    if (!(sphere.w < std::numeric_limits<float>::infinity()) || frame.lodDistance.w == 0.0f) return true;
-    const float distance = glm::length(glm::vec3(sphere) + origin);
-    // classifyTerminal compares its sphere's centre, held by this sphere, in float: the same
-    // relative slack as pageMayBeVisible keeps this test the looser one.
-    const float nearest = distance - sphere.w - 1e-5f * distance;
-    return nearest <= 0.0f || nearest * nearest < frame.lodDistance.x;
+    return frame.lodDistance.w == 0.0f || pageReachesWithin(sphere, origin, frame.lodDistance.x);
+}
+
+bool pageMayHoldLod3(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame) {
+    return frame.lodDistance.w != 0.0f && pageReachesWithin(sphere, origin, frame.lodDistance.y);
 }
 
 } // namespace hexlod::lod

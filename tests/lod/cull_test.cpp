@@ -83,7 +83,8 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
     std::vector<TerminalSet> sets;
     for (int b = 0; b < 12; ++b)
         sets.push_back(randomSet(random, 1000 + 937 * b, shapesPerGrammar, 150.0f, b % 3 != 0));
-    uint64_t skipped = 0, occludedPages = 0, fine = 0, coarse = 0, coarseWithImpostor = 0, listsSaved = 0;
+    uint64_t skipped = 0, occludedPages = 0, fine = 0, coarse = 0, coarseWithImpostor = 0, listsSaved = 0,
+             lod3Entries = 0, lod3ListsSaved = 0;
     for (int trial = 0; trial < 6; ++trial) {
         arena.beginFrame(trial);
         CullInputs inputs;
@@ -142,15 +143,25 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         std::vector<MeshDrawInfo> meshes(inputs.shapeCount, MeshDrawInfo{36, 0, 0});
         cull.run(inputs, arena.buffer(), meshes);
         std::vector<glm::uvec4> counters = cull.readCounters();
-        std::vector<gpu::GpuTerminal> lists = cull.readLists();
+        std::vector<gpu::GpuTerminal> lists = cull.readLists(), lod3Lists = cull.readLod3Lists();
         const DrawListLayout& layout = cull.layout();
         uint64_t visible = 0;
         for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
+            uint32_t lod3 = 0;
+            for (const CulledTerminal& e : reference.impostor[s]) lod3 += e.lod == HEXLOD_LOD3;
             ASSERT_EQ(counters[s].x, reference.lod4[s].size()) << "shape " << s << " trial " << trial;
-            ASSERT_EQ(counters[s].y, reference.impostor[s].size()) << "shape " << s << " trial " << trial;
-            auto gpuSorted = [&](uint32_t first, uint32_t count) {
-                std::vector<decltype(identity(lists[0]))> ids;
-                for (uint32_t i = 0; i < count; ++i) ids.push_back(identity(lists[first + i]));
+            ASSERT_EQ(counters[s].y, 0u);
+            ASSERT_EQ(counters[s].z, lod3) << "shape " << s << " trial " << trial;
+            ASSERT_EQ(counters[s].w, reference.impostor[s].size() - lod3)
+                << "shape " << s << " trial " << trial;
+            // Each kind within its lists' capacity: LOD4 and LOD2 entries share theirs.
+            ASSERT_LE(counters[s].z, layout.lod3Capacity[s]) << "shape " << s << " trial " << trial;
+            if (s != coarse3) {
+                ASSERT_LE(counters[s].x + counters[s].w, layout.capacity[s]);
+            }
+            auto gpuSorted = [&](uint32_t first, uint32_t count, const std::vector<gpu::GpuTerminal>& from) {
+                std::vector<decltype(identity(from[0]))> ids;
+                for (uint32_t i = 0; i < count; ++i) ids.push_back(identity(from[first + i]));
                 std::sort(ids.begin(), ids.end());
                 return ids;
             };
@@ -164,19 +175,23 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
             // The coarse shape of a shape without impostor fills the lists it shares from the back.
             const uint32_t lod4First =
                 s == coarse3 ? layout.base[s] + layout.capacity[s] - counters[s].x : layout.base[s];
-            EXPECT_EQ(gpuSorted(lod4First, counters[s].x), cpuSorted(reference.lod4[s], 0)) << "shape " << s;
-            EXPECT_EQ(gpuSorted(layout.base[s] + layout.capacity[s] - counters[s].y, counters[s].y),
-                      cpuSorted(reference.impostor[s], 0))
+            EXPECT_EQ(gpuSorted(lod4First, counters[s].x, lists), cpuSorted(reference.lod4[s], 0))
                 << "shape " << s;
-            uint64_t lod3 = 0;
-            for (const CulledTerminal& e : reference.impostor[s]) lod3 += e.lod == HEXLOD_LOD3;
-            EXPECT_EQ(counters[s].z, lod3);
-            EXPECT_EQ(counters[s].w, reference.impostor[s].size() - lod3);
-            visible += counters[s].x + counters[s].y;
-            if (s == 3) {
-                EXPECT_EQ(counters[s].y, 0u);
+            EXPECT_EQ(gpuSorted(layout.base[s] + layout.capacity[s] - counters[s].w, counters[s].w, lists),
+                      cpuSorted(reference.impostor[s], HEXLOD_LOD2))
+                << "shape " << s;
+            EXPECT_EQ(gpuSorted(layout.lod3Base[s], counters[s].z, lod3Lists),
+                      cpuSorted(reference.impostor[s], HEXLOD_LOD3))
+                << "shape " << s;
+            visible += counters[s].x + counters[s].z + counters[s].w;
+            // Only shapes with an impostor have LOD3 lists.
+            if (!inputs.shapeImpostor[s]) {
+                EXPECT_EQ(counters[s].z + counters[s].w, 0u);
+                EXPECT_EQ(layout.lod3Capacity[s], 0u);
             }
         }
+        EXPECT_EQ(layout.lod3Total, layout.lod3Base.back() + layout.lod3Capacity.back());
+        EXPECT_LE(layout.lod3Total, layout.total);
         // The coarse shape of a shape without impostor shares the lists of the shape it serves
         // and adds nothing to them; that of a shape with one has lists of its own, as long as
         // shape 8's terminals in the pages within LOD4's distance. Only LOD4 entries go there.
@@ -187,7 +202,7 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         EXPECT_EQ(layout.total, layout.base[coarse8] + layout.capacity[coarse8]);
         EXPECT_LE(counters[3].x + counters[coarse3].x, layout.capacity[3]);
         EXPECT_LE(counters[coarse8].x, layout.capacity[coarse8]);
-        EXPECT_EQ(counters[coarse3].y + counters[coarse8].y, 0u);
+        EXPECT_EQ(counters[coarse3].z + counters[coarse3].w + counters[coarse8].z + counters[coarse8].w, 0u);
         if (trial == 5) {
             EXPECT_EQ(counters[coarse3].x + counters[coarse8].x, 0u);
         }
@@ -212,6 +227,10 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
         coarse += counters[coarse3].x;
         coarseWithImpostor += counters[coarse8].x;
         listsSaved += layout.capacity[8] - layout.capacity[coarse8];
+        for (uint32_t s = 0; s < inputs.shapeCount; ++s) {
+            lod3Entries += counters[s].z;
+            if (inputs.shapeImpostor[s]) lod3ListsSaved += layout.capacity[s] - layout.lod3Capacity[s];
+        }
         // Some of everything: the trial would prove little if all were culled or all LOD4.
         EXPECT_GT(visible, 0u);
         EXPECT_GT(reference.culled, 0u);
@@ -240,6 +259,9 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
     EXPECT_GT(coarse, 0u);
     EXPECT_GT(coarseWithImpostor, 0u);
     EXPECT_GT(listsSaved, 0u);
+    // LOD3 entries went to lists of their own, which pages beyond LOD2's distance left smaller.
+    EXPECT_GT(lod3Entries, 0u);
+    EXPECT_GT(lod3ListsSaved, 0u);
 }
 
 // Hand-placed terminals: a 2 m x 2 m facade tile facing -y at the origin of its cell.

@@ -86,9 +86,15 @@ double lodDistance(double geometricError, const scene::LodProfile& profile, doub
 // impostor shares the lists of the shape it serves (same base and capacity, not counted in the
 // total); that of a shape with one has its own, as long as the served shape's terminals in the
 // pages that may hold LOD4 entries (pageMayHoldLod4).
+// LOD3 entries have lists of their own, in a buffer of their own, so that the LOD3 and LOD2
+// passes each walk only their entries (a software rasteriser runs a vertex shader's every
+// branch for every vertex): per shape with an impostor, its terminals in the pages that may
+// hold LOD3 entries (pageMayHoldLod3). They never exceed the draw lists' total.
 struct DrawListLayout {
     std::vector<uint32_t> base, capacity; // per global shape
     uint64_t total = 0;
+    std::vector<uint32_t> lod3Base, lod3Capacity; // per global shape
+    uint64_t lod3Total = 0;
 };
 
 // The pages the GPU pass culls terminal by terminal (every page of every batch but those its

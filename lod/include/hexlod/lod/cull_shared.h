@@ -64,12 +64,12 @@ struct CullFrame {
 };
 
 // Per global shape (std430 uvec4): x, the first slot of its draw lists; y, their capacity
-// (LOD4 entries fill from the front, impostor entries, LOD3 and LOD2, from the back); z, 1 when
-// it has an impostor, HEXLOD_COARSE_SHAPE for the coarse shape (meshShape) of a shape without
-// impostor, whose LOD4 entries fill the lists of the shape it serves from the back (the coarse
-// shape of a shape with an impostor has lists of its own, DrawListLayout); w, 1 when it is
-// part of a tree (whose terminal's building id is then the tree's id). Counters per shape
-// (uvec4): LOD4, impostor, LOD3, LOD2 entries.
+// (LOD4 entries fill from the front, LOD2 entries from the back; LOD3 entries have lists of
+// their own, DrawListLayout); z, 1 when it has an impostor, HEXLOD_COARSE_SHAPE for the coarse
+// shape (meshShape) of a shape without impostor, whose LOD4 entries fill the lists of the
+// shape it serves from the back (the coarse shape of a shape with an impostor has lists of its
+// own); w, 1 when it is part of a tree (whose terminal's building id is then the tree's id).
+// Counters per shape (uvec4): LOD4 entries, 0, LOD3 and LOD2 entries.
 #define HEXLOD_COARSE_SHAPE 2u
 
 // One resident batch, as the pass sees it (std430, 16 bytes).

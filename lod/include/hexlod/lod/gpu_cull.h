@@ -24,7 +24,8 @@ struct MeshDrawInfo {
 };
 
 // Byte offsets of the commands in commandBuffer(): shapeCount DrawElementsIndirectCommands
-// (20 bytes each) for LOD4, then shapeCount DrawArraysIndirectCommands (16 bytes) for impostors.
+// (20 bytes each) for LOD4, then shapeCount DrawArraysIndirectCommands (16 bytes) for LOD2
+// entries in listBuffer(), then as many for LOD3 entries in lod3ListBuffer().
 inline constexpr uint32_t kLod4CommandStride = 20, kImpostorCommandStride = 16;
 
 class GpuCull {
@@ -51,16 +52,18 @@ public:
     // The most draw-list records one storage block holds (CullInputs::maxListRecords).
     uint64_t maxListRecords() const { return maxListRecords_; }
     uint32_t listBuffer() const { return buffers_[kLists].id; }
+    uint32_t lod3ListBuffer() const { return buffers_[kLod3Lists].id; }
     uint32_t frameBuffer() const { return buffers_[kFrame].id; } // the CullFrame uniform block
     uint32_t commandBuffer() const { return buffers_[kCommands].id; }
     uint64_t byteSize() const; // GPU memory of the pass's buffers
 
-    // Per shape: LOD4, impostor, LOD3, LOD2 entries (waits for the pass).
+    // Per shape: LOD4 entries, 0, LOD3 and LOD2 entries (waits for the pass).
     std::vector<glm::uvec4> readCounters();
     // Terminals the occlusion test culled one by one (waits for the pass).
     uint32_t readOccluded();
-    // The draw lists as written (tests; waits for the pass).
+    // The draw lists as written, LOD4 and LOD2 and then LOD3 (tests; wait for the pass).
     std::vector<gpu::GpuTerminal> readLists();
+    std::vector<gpu::GpuTerminal> readLod3Lists();
 
 private:
     enum BufferIndex {
@@ -74,6 +77,8 @@ private:
         kCommands,
         kOccluded,
         kCoarse,
+        kLod3Lists,
+        kLod3Bases,
         kBufferCount
     };
     struct Buffer {
@@ -82,6 +87,7 @@ private:
     };
     // Makes buffer `index` hold at least `bytes`, growing it by doubling.
     void reserve(BufferIndex index, uint64_t bytes);
+    std::vector<gpu::GpuTerminal> readRecords(BufferIndex index, uint64_t count);
 
     render::ShaderProgram cull_, finalize_;
     Buffer buffers_[kBufferCount];

@@ -29,4 +29,8 @@ bool pageMayBeVisible(const glm::vec4& sphere, const glm::vec3& origin, const sh
 // that classifyTerminal gives none of the page's terminals of a shape with an impostor LOD4.
 bool pageMayHoldLod4(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame);
 
+// False only when classifyTerminal gives none of the page's terminals LOD3: every point of
+// `sphere` lies at or beyond LOD2's distance, or the frame has no LOD distances.
+bool pageMayHoldLod3(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame);
+
 } // namespace hexlod::lod
