@@ -436,7 +436,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stageStart = Clock::now();
     timer.restart();
     drawTerminalMeshes(timer);
-    drawImpostors(glm::mat4(glm::inverse(glm::dmat4(uniforms.viewProjection))), timer);
+    const bool lod3Tiles = drawImpostors(glm::mat4(glm::inverse(glm::dmat4(uniforms.viewProjection))), timer);
     if (trees_.hasImpostors() && !billboards.empty()) {
         TreeFrame trees;
         trees.cull = &inputs.frame;
@@ -447,7 +447,10 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         stats.treeBillboards = submitted;
         stats.treePoints = points;
         gl::glBindBufferBase(GL_UNIFORM_BUFFER, 0, cull_.frameBuffer());
-        depthTiles_.build(target_.depthTexture(), true);
+        // The billboards are tested against the tiles LOD3 was tested against: built again
+        // after LOD3, they would wait for its rasterisation, which the trees' setup overlaps
+        // instead. A billboard that LOD3 hides then fails the depth test pixel by pixel.
+        if (!lod3Tiles) depthTiles_.build(target_.depthTexture(), true);
         depthTiles_.bind(trees_.program(), kDepthTilesUnit, TileTest::TreeBillboards, options_.dropHidden);
         trees_.program().set("alphaToCoverage", uint32_t(options_.samples > 1));
         if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
@@ -539,11 +542,11 @@ void CityRenderer::drawTerminalMeshes(PassTimer& timer) {
     timer.end(DrawPass::TerminalMeshes);
 }
 
-void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTimer& timer) {
+bool CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTimer& timer) {
     const uint32_t shapes = cull_.shapeCount();
     // Whether the cull wrote impostor entries is known only once it has run; the mode says
     // when it cannot have, and an indirect draw of none costs the GPU nothing.
-    if (shapes == 0 || !programs_->impostor.valid() || !impostorsDrawn()) return;
+    if (shapes == 0 || !programs_->impostor.valid() || !impostorsDrawn()) return false;
     gl::glBindVertexArray(impostorVao_);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
@@ -574,6 +577,7 @@ void CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTim
     gl::glBindVertexArray(0);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     timer.end(DrawPass::Impostors);
+    return true;
 }
 
 } // namespace hexlod::lod

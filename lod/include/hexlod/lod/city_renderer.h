@@ -159,7 +159,8 @@ private:
         return impostorTextures_.layers() > 0 && options_.mode != RenderMode::AllLod4;
     }
     // LOD2 and LOD3; LOD3 ray-casts from the unprojected screen (inverseViewProjection).
-    void drawImpostors(const glm::mat4& inverseViewProjection, PassTimer& timer);
+    // Returns whether it drew them, building the depth tiles after LOD4 and LOD2 for LOD3.
+    bool drawImpostors(const glm::mat4& inverseViewProjection, PassTimer& timer);
     // The base volumes ring by ring, each against the depth tiles of the rings before it: at
     // street level most of the city stands behind the street's walls.
     void drawVolumeRings(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,
