@@ -487,7 +487,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.volumesBuilt = volumes_.stats().built;
     stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
                      volumes_.stats().residentBytes + ground_.byteSize() + trees_.byteSize() +
-                     depthTiles_.byteSize() +
+                     depthTiles_.byteSize() + impostorQuads_.byteSize() +
                      uint64_t(options_.width) * options_.height * 12 * options_.samples;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;
@@ -535,8 +535,7 @@ void CityRenderer::drawTerminalMeshes(PassTimer& timer) {
     gl::glBindVertexArray(lod4Vao_);
     gl::glVertexArrayVertexBuffer(lod4Vao_, 1, cull_.listBuffer(), 0, sizeof(gpu::GpuTerminal));
     programs_->lod4.use();
-    gl::glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(shapes),
-                                    kLod4CommandStride);
+    gl::glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(shapes), kCommandStride);
     gl::glBindVertexArray(0);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     timer.end(DrawPass::TerminalMeshes);
@@ -547,6 +546,12 @@ bool CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTim
     // Whether the cull wrote impostor entries is known only once it has run; the mode says
     // when it cannot have, and an indirect draw of none costs the GPU nothing.
     if (shapes == 0 || !programs_->impostor.valid() || !impostorsDrawn()) return false;
+    // The quads must cover the largest list either pass may draw in one command.
+    const DrawListLayout& layout = cull_.layout();
+    uint64_t quads = 0;
+    for (uint32_t s = 0; s < shapes; ++s)
+        quads = std::max<uint64_t>({quads, layout.capacity[s], layout.lod3Capacity[s]});
+    if (impostorQuads_.reserve(quads)) gl::glVertexArrayElementBuffer(impostorVao_, impostorQuads_.buffer());
     gl::glBindVertexArray(impostorVao_);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
@@ -554,7 +559,7 @@ bool CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTim
     if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     // LOD2 on the wall plane first, depth-tested before shading, then the ray-cast LOD3
     // entries, each over draw lists of its own.
-    uintptr_t commands = uintptr_t(shapes) * kLod4CommandStride;
+    uintptr_t commands = uintptr_t(shapes) * kCommandStride;
     for (const render::ShaderProgram* program : {&programs_->impostorWall, &programs_->impostor}) {
         const bool lod3 = program == &programs_->impostor;
         // LOD3 writes its depth: its entries are tested against everything drawn before it.
@@ -569,9 +574,10 @@ bool CityRenderer::drawImpostors(const glm::mat4& inverseViewProjection, PassTim
             program->set("parallaxIterations", options_.parallaxIterations);
             depthTiles_.bind(*program, kDepthTilesUnit, TileTest::Lod3Impostors, options_.dropHidden);
         }
-        gl::glMultiDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(commands), GLsizei(shapes),
-                                      kImpostorCommandStride);
-        commands += uintptr_t(shapes) * kImpostorCommandStride;
+        gl::glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                        reinterpret_cast<const void*>(commands), GLsizei(shapes),
+                                        kCommandStride);
+        commands += uintptr_t(shapes) * kCommandStride;
     }
     gl::glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gl::glBindVertexArray(0);

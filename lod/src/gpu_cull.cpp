@@ -111,7 +111,7 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
                                   GL_UNSIGNED_INT, nullptr);
     reserve(kLists, layout_.total * sizeof(gpu::GpuTerminal));
     reserve(kLod3Lists, layout_.lod3Total * sizeof(gpu::GpuTerminal));
-    reserve(kCommands, uint64_t(shapeCount_) * (kLod4CommandStride + 2 * kImpostorCommandStride));
+    reserve(kCommands, uint64_t(shapeCount_) * 3 * kCommandStride);
     reserve(kOccluded, sizeof(uint32_t));
     gl::glClearNamedBufferSubData(buffers_[kOccluded].id, GL_R32UI, 0, sizeof(uint32_t), GL_RED_INTEGER,
                                   GL_UNSIGNED_INT, nullptr);

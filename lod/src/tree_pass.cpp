@@ -222,7 +222,7 @@ std::pair<uint32_t, uint32_t> TreePass::prepare(const std::vector<std::pair<uint
             const bool anyPoint =
                 2.0f * chunk.minRadius * frame.screenScale < 1.01f * frame.pointDiameter * farthest;
             if (anyBillboard)
-                billboardRanges_[allFar].add(6 * chunk.first, 6 * chunk.count), billboards += chunk.count;
+                billboardRanges_[allFar].add(chunk.first, chunk.count), billboards += chunk.count;
             if (anyPoint) pointRanges_[allFar].add(chunk.first, chunk.count), points += chunk.count;
         }
     }
@@ -246,8 +246,24 @@ uint32_t TreePass::drawRanges(const render::ShaderProgram& program, const TreeFr
     for (uint32_t allFar = 0; allFar < 2; ++allFar) {
         if (ranges[allFar].counts.empty()) continue;
         program.set("allBillboards", allFar);
-        gl::glMultiDrawArrays(points ? GL_POINTS : GL_TRIANGLES, ranges[allFar].firsts.data(),
-                              ranges[allFar].counts.data(), GLsizei(ranges[allFar].counts.size()));
+        const Ranges& drawn = ranges[allFar];
+        if (points) {
+            gl::glMultiDrawArrays(GL_POINTS, drawn.firsts.data(), drawn.counts.data(),
+                                  GLsizei(drawn.counts.size()));
+        } else {
+            // Six indices a tree from the start of the quads, the base vertex four a tree.
+            if (quads_.reserve(uint64_t(*std::max_element(drawn.counts.begin(), drawn.counts.end()))))
+                gl::glVertexArrayElementBuffer(vao_, quads_.buffer());
+            std::vector<GLsizei> counts;
+            std::vector<GLint> baseVertices;
+            for (size_t r = 0; r < drawn.counts.size(); ++r) {
+                counts.push_back(6 * drawn.counts[r]);
+                baseVertices.push_back(4 * drawn.firsts[r]);
+            }
+            const std::vector<const void*> offsets(counts.size(), nullptr);
+            gl::glMultiDrawElementsBaseVertex(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(),
+                                              GLsizei(counts.size()), baseVertices.data());
+        }
         ++draws;
     }
     if (points) gl::glDisable(GL_PROGRAM_POINT_SIZE);

@@ -19,6 +19,7 @@
 #include "hexlod/lod/draw_pass.h"
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/lod/ground_pass.h"
+#include "hexlod/lod/quad_indices.h"
 #include "hexlod/lod/scene_impostors.h"
 #include "hexlod/lod/shape_table.h"
 #include "hexlod/lod/terminal_arena.h"
@@ -191,8 +192,9 @@ private:
     VolumeCache volumes_;
     GroundPass ground_;
     TreePass trees_;
-    DepthTiles depthTiles_;  // for LOD3 impostors and tree billboards
-    double treeError_ = 0.0; // metres; 0: trees are always geometry
+    DepthTiles depthTiles_;     // for LOD3 impostors and tree billboards
+    QuadIndices impostorQuads_; // the impostor passes' index buffer
+    double treeError_ = 0.0;    // metres; 0: trees are always geometry
     impostor::ImpostorTextures impostorTextures_;
     uint32_t sphereBuffer_ = 0, frameBuffer_ = 0, lod4Vao_ = 0, impostorVao_ = 0;
     uint32_t centralView_ = 0;

@@ -23,10 +23,11 @@ struct MeshDrawInfo {
     int32_t baseVertex = 0;
 };
 
-// Byte offsets of the commands in commandBuffer(): shapeCount DrawElementsIndirectCommands
-// (20 bytes each) for LOD4, then shapeCount DrawArraysIndirectCommands (16 bytes) for LOD2
-// entries in listBuffer(), then as many for LOD3 entries in lod3ListBuffer().
-inline constexpr uint32_t kLod4CommandStride = 20, kImpostorCommandStride = 16;
+// The commands in commandBuffer(), DrawElementsIndirectCommands of 20 bytes: shapeCount for
+// LOD4, then shapeCount for LOD2 entries in listBuffer(), then as many for LOD3 entries in
+// lod3ListBuffer(). The impostor commands draw from a QuadIndices buffer holding at least the
+// largest LOD2 or LOD3 list (DrawListLayout).
+inline constexpr uint32_t kCommandStride = 20;
 
 class GpuCull {
 public:

@@ -14,6 +14,7 @@
 #include "hexlod/cells/batch_catalog.h"
 #include "hexlod/impostor/impostor_textures.h"
 #include "hexlod/lod/cull_shared.h"
+#include "hexlod/lod/quad_indices.h"
 #include "hexlod/lod/scene_impostors.h"
 #include "hexlod/render/shader_program.h"
 
@@ -59,7 +60,8 @@ public:
     // caller has set, then points. Returns the draws made.
     uint32_t drawBillboards(const TreeFrame& frame);
     uint32_t drawPoints(const TreeFrame& frame);
-    uint64_t byteSize() const { return bytes_; } // GPU bytes: trees, billboards, species impostors
+    // GPU bytes: trees, billboards, species impostors
+    uint64_t byteSize() const { return bytes_ + quads_.byteSize(); }
     bool hasImpostors() const { return textures_.layers() > 0; }
     const render::ShaderProgram& program() const { return program_; }
 
@@ -71,14 +73,16 @@ private:
         float minRadius = 0.0f, maxRadius = 0.0f; // of its trees' species spheres
         uint32_t first = 0, count = 0;            // in the billboard buffer
     };
-    // Ranges of trees for one multi-draw: index 1 for batches whose trees are all far.
+    // Ranges of trees (billboard records) for one multi-draw: index 1 for batches whose trees
+    // are all far.
     struct Ranges {
         std::vector<int32_t> firsts, counts;
         void add(uint32_t first, uint32_t count);
         void clear() { firsts.clear(), counts.clear(); }
     };
     void buildChunks(const std::vector<glm::vec4>& instances, const std::vector<glm::vec4>& speciesSpheres);
-    // One multi-draw per non-empty Ranges: six vertices a tree (billboards) or one (points).
+    // One multi-draw per non-empty Ranges: a rectangle a tree (billboards, indexed over
+    // quads_) or a point.
     uint32_t drawRanges(const render::ShaderProgram& program, const TreeFrame& frame,
                         const Ranges (&ranges)[2], bool points);
 
@@ -92,6 +96,7 @@ private:
     render::ShaderProgram program_, pointProgram_;
     uint32_t byId_ = 0, instances_ = 0, spheres_ = 0, boxes_ = 0, viewAverages_ = 0, vao_ = 0;
     uint64_t bytes_ = 0;
+    QuadIndices quads_; // the billboards' index buffer
 };
 
 } // namespace hexlod::lod
