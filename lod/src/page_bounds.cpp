@@ -25,6 +25,16 @@ glm::dvec4 terminalSphere(const grammar::TerminalRecord& record) {
     return {centre, 0.5 * std::sqrt(width * width + height * height + 4.0 * depth * depth)};
 }
 
+// Whether some point of `sphere` lies nearer the camera than the square root of
+// `distanceSquared`. classifyTerminal compares its sphere's centre, held by this sphere, in
+// float: the same relative slack as pageMayBeVisible keeps this test the looser one.
+bool pageReachesWithin(const glm::vec4& sphere, const glm::vec3& origin, float distanceSquared) {
+    if (!(sphere.w < std::numeric_limits<float>::infinity())) return true;
+    const float distance = glm::length(glm::vec3(sphere) + origin);
+    const float nearest = distance - sphere.w - 1e-5f * distance;
+    return nearest <= 0.0f || nearest * nearest < distanceSquared;
+}
+
 } // namespace
 
 std::vector<glm::vec4> pageSpheres(const grammar::TerminalSet& set) {
@@ -65,20 +75,6 @@ bool pageMayBeVisible(const glm::vec4& sphere, const glm::vec3& origin, const sh
         if (glm::dot(glm::vec3(plane), centre) + plane.w < -(sphere.w + slack)) return false;
     return true;
 }
-
-namespace {
-
-// Whether some point of `sphere` lies nearer the camera than the square root of
-// `distanceSquared`. classifyTerminal compares its sphere's centre, held by this sphere, in
-// float: the same relative slack as pageMayBeVisible keeps this test the looser one.
-bool pageReachesWithin(const glm::vec4& sphere, const glm::vec3& origin, float distanceSquared) {
-    if (!(sphere.w < std::numeric_limits<float>::infinity())) return true;
-    const float distance = glm::length(glm::vec3(sphere) + origin);
-    const float nearest = distance - sphere.w - 1e-5f * distance;
-    return nearest <= 0.0f || nearest * nearest < distanceSquared;
-}
-
-} // namespace
 
 bool pageMayHoldLod4(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame) {
     // No LOD distances (frame.lodDistance.w == 0): every visible terminal is LOD4.
