@@ -227,7 +227,9 @@ bool CityRenderer::init(std::string& error) {
         for (size_t s = 0; s < meshes_.shapeCount(g); ++s) shapeTree_[shapes_.shapeBase(g) + s] = 1;
     shapes_.commit();
     if (!trees_.init(catalog_, impostors_, ground_.origin(), options_.fitTreeBillboards, error)) return false;
-    if (!depthTiles_.init(options_.width, options_.height, options_.samples, error)) return false;
+    if (!depthTiles_.init(options_.width, options_.height, options_.samples, kDepthTileSize, error) ||
+        !volumeTiles_.init(options_.width, options_.height, options_.samples, kVolumeTileSize, error))
+        return false;
 
     gl::glCreateBuffers(1, &frameBuffer_);
     gl::glNamedBufferStorage(frameBuffer_, sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -487,7 +489,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.volumesBuilt = volumes_.stats().built;
     stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
                      volumes_.stats().residentBytes + ground_.byteSize() + trees_.byteSize() +
-                     depthTiles_.byteSize() + impostorQuads_.byteSize() +
+                     depthTiles_.byteSize() + volumeTiles_.byteSize() + impostorQuads_.byteSize() +
                      uint64_t(options_.width) * options_.height * 12 * options_.samples;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;

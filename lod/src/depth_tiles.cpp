@@ -16,10 +16,16 @@ DepthTiles::~DepthTiles() {
     if (counts_) gl::glDeleteBuffers(1, &counts_);
 }
 
-bool DepthTiles::init(uint32_t width, uint32_t height, uint32_t samples, std::string& error) {
+bool DepthTiles::init(uint32_t width, uint32_t height, uint32_t samples, uint32_t tileSize,
+                      std::string& error) {
+    if (tileSize == 0) {
+        error = "depth tiles: the tile size must be at least one pixel";
+        return false;
+    }
     samples_ = samples;
-    columns_ = (width + kDepthTileSize - 1) / kDepthTileSize;
-    rows_ = (height + kDepthTileSize - 1) / kDepthTileSize;
+    tileSize_ = tileSize;
+    columns_ = (width + tileSize - 1) / tileSize;
+    rows_ = (height + tileSize - 1) / tileSize;
     const auto tilesAt = [&](uint32_t level) {
         const uint32_t size = 1u << level;
         return uint64_t((columns_ + size - 1) / size) * ((rows_ + size - 1) / size);
@@ -87,7 +93,7 @@ void DepthTiles::build(uint32_t depthTexture, bool coarserLevels) {
     program_.use();
     gl::glBindTextureUnit(0, depthTexture);
     program_.set("depthTarget", 0);
-    program_.set("tileSize", kDepthTileSize);
+    program_.set("tileSize", tileSize_);
     program_.set("samples", samples_);
     gl::glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     const auto dispatch = [](uint32_t columns, uint32_t rows) {
@@ -117,7 +123,7 @@ void DepthTiles::bind(const render::ShaderProgram& program, uint32_t unit, TileT
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountBinding, counts_);
     program.set("depthTileCount", uint32_t(test));
     program.set("depthTiles", int(unit));
-    program.set("depthTileSize", kDepthTileSize);
+    program.set("depthTileSize", tileSize_);
     program.set("depthTileLevels", builtLevels_);
     program.set("depthTileLookups", kDepthTileLookups);
     program.set("depthTilesEnabled", uint32_t(enabled));

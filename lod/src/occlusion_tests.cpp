@@ -17,7 +17,40 @@ bool rectHidden(const std::vector<float>& tiles, uint32_t columns, uint32_t x0, 
     return true;
 }
 
+// rectHidden over the grid: block by block, and tile by tile only within a block that may
+// show what lies at `nearestDepth`.
+bool gridRectHidden(const OcclusionGrid& grid, uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1,
+                    float nearestDepth) {
+    for (uint32_t by = y0 / kOcclusionBlock; by <= y1 / kOcclusionBlock; ++by)
+        for (uint32_t bx = x0 / kOcclusionBlock; bx <= x1 / kOcclusionBlock; ++bx) {
+            if (grid.blocks[size_t(by) * grid.blockColumns + bx] > nearestDepth) continue;
+            const uint32_t tx0 = std::max(x0, bx * kOcclusionBlock);
+            const uint32_t tx1 = std::min(x1, bx * kOcclusionBlock + kOcclusionBlock - 1);
+            const uint32_t ty0 = std::max(y0, by * kOcclusionBlock);
+            const uint32_t ty1 = std::min(y1, by * kOcclusionBlock + kOcclusionBlock - 1);
+            if (!rectHidden(grid.tiles, grid.columns, tx0, ty0, tx1, ty1, nearestDepth)) return false;
+        }
+    return true;
+}
+
 } // namespace
+
+OcclusionGrid occlusionGrid(std::vector<float> tiles, uint32_t columns, uint32_t rows) {
+    OcclusionGrid grid;
+    if (columns == 0 || rows == 0 || tiles.size() != size_t(columns) * rows) return grid;
+    grid.columns = columns;
+    grid.rows = rows;
+    grid.blockColumns = (columns + kOcclusionBlock - 1) / kOcclusionBlock;
+    grid.blockRows = (rows + kOcclusionBlock - 1) / kOcclusionBlock;
+    grid.blocks.assign(size_t(grid.blockColumns) * grid.blockRows, 1.0f);
+    for (uint32_t y = 0; y < rows; ++y)
+        for (uint32_t x = 0; x < columns; ++x) {
+            float& block = grid.blocks[size_t(y / kOcclusionBlock) * grid.blockColumns + x / kOcclusionBlock];
+            block = std::min(block, tiles[size_t(y) * columns + x]);
+        }
+    grid.tiles = std::move(tiles);
+    return grid;
+}
 
 bool tilesHideSphere(const shared::CullFrame& frame, const std::vector<float>* tiles, const glm::vec4& sphere,
                      uint32_t maxTiles) {
@@ -28,9 +61,11 @@ bool tilesHideSphere(const shared::CullFrame& frame, const std::vector<float>* t
     return rectHidden(*tiles, uint32_t(frame.occlusion.x), rect.x, rect.y, rect.z, rect.w, nearest);
 }
 
-bool tilesHideBox(const shared::CullFrame& frame, const std::vector<float>* tiles, const glm::vec3& boxMin,
+bool tilesHideBox(const shared::CullFrame& frame, const OcclusionGrid* grid, const glm::vec3& boxMin,
                   const glm::vec3& boxMax) {
-    if (!tiles || frame.occlusion.x == 0.0f) return false;
+    if (!grid || grid->tiles.empty() || frame.occlusion.x != float(grid->columns) ||
+        frame.occlusion.y != float(grid->rows))
+        return false;
     if (!(boxMin.x <= boxMax.x && boxMin.y <= boxMax.y && boxMin.z <= boxMax.z)) return false;
     const glm::dvec3 right(frame.viewRight), up(frame.viewUp), forward(frame.viewForward);
     double nearZ = INFINITY, ndcX0 = INFINITY, ndcX1 = -INFINITY, ndcY0 = INFINITY, ndcY1 = -INFINITY;
@@ -61,9 +96,9 @@ bool tilesHideBox(const shared::CullFrame& frame, const std::vector<float>* tile
     const double marginZ = nearZ - 0.01 - 1e-4 * nearZ;
     if (!(marginZ > double(frame.viewForward.w))) return false;
     const float nearestDepth = float(double(frame.depthMap.x) / marginZ - double(frame.depthMap.y));
-    return rectHidden(*tiles, uint32_t(frame.occlusion.x), tile(ndcX0 - padX, toTileX, lastX),
-                      tile(ndcY0 - padY, toTileY, lastY), tile(ndcX1 + padX, toTileX, lastX),
-                      tile(ndcY1 + padY, toTileY, lastY), nearestDepth);
+    return gridRectHidden(*grid, tile(ndcX0 - padX, toTileX, lastX), tile(ndcY0 - padY, toTileY, lastY),
+                          tile(ndcX1 + padX, toTileX, lastX), tile(ndcY1 + padY, toTileY, lastY),
+                          nearestDepth);
 }
 
 } // namespace hexlod::lod

@@ -11,19 +11,19 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
                                    double nearPlane, double farPlane, FrameStats& stats, PassTimer& timer) {
     shared::CullFrame occlusion{};
     setOcclusion(occlusion, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
-                 options_.height, depthTiles_.columns(), depthTiles_.rows(), kDepthTileSize);
-    const bool test = options_.dropHidden && depthTiles_.valid();
-    std::vector<float> tiles;
+                 options_.height, volumeTiles_.columns(), volumeTiles_.rows(), volumeTiles_.tileSize());
+    const bool test = options_.dropHidden && volumeTiles_.valid();
+    OcclusionGrid tiles;
     bool drawnSinceTiles = false; // the tiles are built again only after more was drawn
     for (uint8_t ring = 0; ring < kVolumeRings; ++ring) {
         std::vector<VolumeDraw> draws;
         for (const VolumeDraw& draw : volumes)
             if (draw.ring == ring) draws.push_back(draw);
         if (draws.empty()) continue;
-        if (test && (drawnSinceTiles || !tiles.empty())) {
+        if (test && (drawnSinceTiles || !tiles.tiles.empty())) {
             if (drawnSinceTiles) {
-                depthTiles_.build(target_.depthTexture(), false);
-                tiles = depthTiles_.read();
+                volumeTiles_.build(target_.depthTexture(), false);
+                tiles = occlusionGrid(volumeTiles_.read(), volumeTiles_.columns(), volumeTiles_.rows());
                 drawnSinceTiles = false;
             }
             std::erase_if(draws, [&](const VolumeDraw& draw) {
@@ -39,7 +39,7 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
             // a few of its buildings only, and with multisampling llvmpipe shades every
             // fragment it rasterises, hidden or not (it skips hidden ones only at one sample).
             draw.runs = visibleBuildingRuns(draw, pose.position, occlusion,
-                                            test && !tiles.empty() ? &tiles : nullptr, stats);
+                                            test && !tiles.tiles.empty() ? &tiles : nullptr, stats);
         }
         drawVolumes(draws, pose.position, stats, timer);
         drawnSinceTiles = drawnSinceTiles || !draws.empty();
@@ -47,7 +47,7 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
 }
 
 bool CityRenderer::volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera,
-                                const shared::CullFrame& occlusion, const std::vector<float>& tiles) const {
+                                const shared::CullFrame& occlusion, const OcclusionGrid& tiles) const {
     glm::vec3 lo, hi;
     if (draw.mesh) {
         const glm::vec3 origin(draw.mesh->cellOrigin - camera);
@@ -65,7 +65,7 @@ bool CityRenderer::volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera
 
 std::vector<glm::uvec2> CityRenderer::visibleBuildingRuns(const VolumeDraw& draw, const glm::dvec3& camera,
                                                           const shared::CullFrame& occlusion,
-                                                          const std::vector<float>* tiles,
+                                                          const OcclusionGrid* tiles,
                                                           FrameStats& stats) const {
     const std::vector<render::VolumeBuilding>& buildings = draw.mesh->buildings;
     if (buildings.empty()) return {{0u, draw.mesh->indexCount}};

@@ -49,49 +49,55 @@ std::vector<float> coarser(const std::vector<float>& finer, uint32_t columns, ui
 }
 
 TEST_F(DepthTilesTest, EveryCoarserTileHoldsTheFarthestDepthOfTheTilesUnderIt) {
-    // Sizes whose tiles do not halve evenly, so the grid is padded.
-    for (const auto& [width, height] : {std::pair{300u, 170u}, std::pair{1280u, 720u}, std::pair{16u, 16u}}) {
-        std::mt19937 random(width);
-        std::uniform_real_distribution<float> depth(0.0f, 1.0f);
-        std::vector<float> depths(size_t(width) * height);
-        for (float& d : depths) d = depth(random);
-        DepthTiles tiles;
-        std::string error;
-        ASSERT_TRUE(tiles.init(width, height, 1, error)) << error;
-        tiles.build(depthTexture(width, height, depths), true);
-        const std::string what = std::to_string(width) + " x " + std::to_string(height);
+    // Sizes whose tiles do not halve evenly, so the grid is padded; the cull's tiles and the
+    // base volume rings' finer ones.
+    for (const uint32_t tileSize : {kDepthTileSize, kVolumeTileSize})
+        for (const auto& [width, height] :
+             {std::pair{300u, 170u}, std::pair{1280u, 720u}, std::pair{16u, 16u}, std::pair{3u, 5u}}) {
+            std::mt19937 random(width);
+            std::uniform_real_distribution<float> depth(0.0f, 1.0f);
+            std::vector<float> depths(size_t(width) * height);
+            for (float& d : depths) d = depth(random);
+            DepthTiles tiles;
+            std::string error;
+            ASSERT_TRUE(tiles.init(width, height, 1, tileSize, error)) << error;
+            EXPECT_EQ(tiles.tileSize(), tileSize);
+            tiles.build(depthTexture(width, height, depths), true);
+            const std::string what = std::to_string(width) + " x " + std::to_string(height) +
+                                     " in tiles of " + std::to_string(tileSize);
 
-        // Enough levels that the coarsest covers the target in kDepthTileLookups tiles.
-        const uint32_t coarsest = tiles.levels() - 1;
-        const uint32_t step = 1u << coarsest;
-        EXPECT_LE(((tiles.columns() + step - 1) / step) * ((tiles.rows() + step - 1) / step),
-                  kDepthTileLookups)
-            << what;
-        EXPECT_EQ(tiles.paddedColumns() % step, 0u) << what;
-        EXPECT_EQ(tiles.paddedRows() % step, 0u) << what;
+            // Enough levels that the coarsest covers the target in kDepthTileLookups tiles.
+            const uint32_t coarsest = tiles.levels() - 1;
+            const uint32_t step = 1u << coarsest;
+            EXPECT_LE(((tiles.columns() + step - 1) / step) * ((tiles.rows() + step - 1) / step),
+                      kDepthTileLookups)
+                << what;
+            EXPECT_EQ(tiles.paddedColumns() % step, 0u) << what;
+            EXPECT_EQ(tiles.paddedRows() % step, 0u) << what;
 
-        // Level 0: the farthest depth of each tile's pixels; 1 past the target.
-        std::vector<float> expected(size_t(tiles.paddedColumns()) * tiles.paddedRows(), 1.0f);
-        for (uint32_t y = 0; y < height; ++y)
-            for (uint32_t x = 0; x < width; ++x) {
-                float& tile = expected[(y / kDepthTileSize) * tiles.paddedColumns() + x / kDepthTileSize];
-                tile = std::min(tile, depths[size_t(y) * width + x]);
+            // Level 0: the farthest depth of each tile's pixels; 1 past the target.
+            std::vector<float> expected(size_t(tiles.paddedColumns()) * tiles.paddedRows(), 1.0f);
+            for (uint32_t y = 0; y < height; ++y)
+                for (uint32_t x = 0; x < width; ++x) {
+                    float& tile = expected[(y / tileSize) * tiles.paddedColumns() + x / tileSize];
+                    tile = std::min(tile, depths[size_t(y) * width + x]);
+                }
+            uint32_t columns = tiles.paddedColumns(), rows = tiles.paddedRows();
+            for (uint32_t level = 0; level < tiles.levels(); ++level) {
+                EXPECT_EQ(tiles.readLevel(level), expected) << what << ", level " << level;
+                expected = coarser(expected, columns, rows);
+                columns /= 2;
+                rows /= 2;
             }
-        uint32_t columns = tiles.paddedColumns(), rows = tiles.paddedRows();
-        for (uint32_t level = 0; level < tiles.levels(); ++level) {
-            EXPECT_EQ(tiles.readLevel(level), expected) << what << ", level " << level;
-            expected = coarser(expected, columns, rows);
-            columns /= 2;
-            rows /= 2;
+            // The copy the CPU tests read: level 0 without the padding.
+            const std::vector<float> unpadded = tiles.read();
+            ASSERT_EQ(unpadded.size(), size_t(tiles.columns()) * tiles.rows()) << what;
+            const std::vector<float> level0 = tiles.readLevel(0);
+            for (uint32_t y = 0; y < tiles.rows(); ++y)
+                for (uint32_t x = 0; x < tiles.columns(); ++x)
+                    EXPECT_EQ(unpadded[y * tiles.columns() + x], level0[y * tiles.paddedColumns() + x])
+                        << what;
         }
-        // The copy the CPU tests read: level 0 without the padding.
-        const std::vector<float> unpadded = tiles.read();
-        ASSERT_EQ(unpadded.size(), size_t(tiles.columns()) * tiles.rows()) << what;
-        const std::vector<float> level0 = tiles.readLevel(0);
-        for (uint32_t y = 0; y < tiles.rows(); ++y)
-            for (uint32_t x = 0; x < tiles.columns(); ++x)
-                EXPECT_EQ(unpadded[y * tiles.columns() + x], level0[y * tiles.paddedColumns() + x]) << what;
-    }
 }
 
 // Runs behindDepthTiles once per rectangle in a vertex shader (no rasterisation).
@@ -117,7 +123,7 @@ TEST_F(DepthTilesTest, AScreenWideRectangleIsDroppedWhereTheTilesHideItAndKeptWh
         for (uint32_t x = 1000; x < 1032; ++x) depths[size_t(y) * width + x] = 0.0f;
     DepthTiles tiles;
     std::string error;
-    ASSERT_TRUE(tiles.init(width, height, 1, error)) << error;
+    ASSERT_TRUE(tiles.init(width, height, 1, kDepthTileSize, error)) << error;
     ASSERT_GT(tiles.levels(), 1u);
     const uint32_t depth = depthTexture(width, height, depths);
 
@@ -204,6 +210,14 @@ TEST_F(DepthTilesTest, AScreenWideRectangleIsDroppedWhereTheTilesHideItAndKeptWh
             << cases[i].what << ", finest only";
     gl::glDeleteVertexArrays(1, &vao);
     gl::glDeleteBuffers(4, buffers);
+}
+
+TEST_F(DepthTilesTest, TilesOfNoPixelsAreAnError) {
+    DepthTiles tiles;
+    std::string error;
+    EXPECT_FALSE(tiles.init(64, 64, 1, 0, error));
+    EXPECT_NE(error.find("tile size"), std::string::npos) << error;
+    EXPECT_FALSE(tiles.valid());
 }
 
 } // namespace

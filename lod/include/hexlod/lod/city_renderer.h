@@ -19,6 +19,7 @@
 #include "hexlod/lod/draw_pass.h"
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/lod/ground_pass.h"
+#include "hexlod/lod/occlusion_tests.h"
 #include "hexlod/lod/quad_indices.h"
 #include "hexlod/lod/scene_impostors.h"
 #include "hexlod/lod/shape_table.h"
@@ -168,12 +169,12 @@ private:
                          double nearPlane, double farPlane, FrameStats& stats, PassTimer& timer);
     // Whether the tiles hide the batch's box: its mesh's bounds when resident, else its cell's.
     bool volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera, const shared::CullFrame& occlusion,
-                      const std::vector<float>& tiles) const;
+                      const OcclusionGrid& tiles) const;
     // The runs of draw.mesh's buildings the tiles leave in view (null tiles: all of them; none:
     // all hidden), nearest first (building_order.h); counts the hidden ones into stats.
     std::vector<glm::uvec2> visibleBuildingRuns(const VolumeDraw& draw, const glm::dvec3& camera,
                                                 const shared::CullFrame& occlusion,
-                                                const std::vector<float>* tiles, FrameStats& stats) const;
+                                                const OcclusionGrid* tiles, FrameStats& stats) const;
     void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats,
                      PassTimer& timer);
     static void drawRuns(const VolumeDraw& draw, FrameStats& stats);
@@ -192,7 +193,8 @@ private:
     VolumeCache volumes_;
     GroundPass ground_;
     TreePass trees_;
-    DepthTiles depthTiles_;     // for LOD3 impostors and tree billboards
+    DepthTiles depthTiles_;     // for the cull, LOD3 impostors and tree billboards
+    DepthTiles volumeTiles_;    // finer, for the base volume rings' CPU tests
     QuadIndices impostorQuads_; // the impostor passes' index buffer
     double treeError_ = 0.0;    // metres; 0: trees are always geometry
     impostor::ImpostorTextures impostorTextures_;

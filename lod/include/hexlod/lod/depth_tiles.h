@@ -1,6 +1,7 @@
-// The farthest depth of each kDepthTileSize-pixel square tile of the frame's depth target,
-// built from what the frame has drawn so far (depth_tiles.comp), and coarser levels, each
-// tile the farthest depth of the two by two under it (depth_tiles_reduce.comp). The cull pass
+// The farthest depth of each square tile of the frame's depth target (kDepthTileSize pixels,
+// or kVolumeTileSize for the base volume rings' CPU tests), built from what the frame has
+// drawn so far (depth_tiles.comp), and coarser levels, each tile the farthest depth of the
+// two by two under it (depth_tiles_reduce.comp). The cull pass
 // tests every terminal against the finest tiles of the opaque base volumes and ground
 // (occlusionRect in cull_shared.h). A later pass whose fragments write their own depth (LOD3
 // impostors, tree billboards), and so cannot be rejected before shading, tests each rectangle
@@ -21,7 +22,13 @@
 
 namespace hexlod::lod {
 
+// The cull pass's tiles, and the vertex-stage tests' (LOD3 impostors, tree billboards).
 constexpr uint32_t kDepthTileSize = 16;
+// The base volume rings' tiles (CPU tests only, occlusion_tests.h): at 16 pixels a tile on a
+// roofline holds sky, so a far building behind the roofs was drawn. At the thesis street
+// 4-pixel tiles cut the LOD1 and LOD0 rings' triangles from 11 k and 101 k to 5 k and 27 k a
+// frame (docs/BENCHMARKS.md, "Finer tiles for the base volume rings").
+constexpr uint32_t kVolumeTileSize = 4;
 // The most tiles a vertex stage looks up for one rectangle (depth_tiles.glsl), on the finest
 // level that covers it in as few; with more it counts as visible. Levels are added until one
 // covers the whole target in as few.
@@ -37,8 +44,8 @@ public:
     DepthTiles(const DepthTiles&) = delete;
     DepthTiles& operator=(const DepthTiles&) = delete;
 
-    // Tiles for a width x height target of `samples` samples per pixel.
-    bool init(uint32_t width, uint32_t height, uint32_t samples, std::string& error);
+    // Tiles of `tileSize` pixels for a width x height target of `samples` samples per pixel.
+    bool init(uint32_t width, uint32_t height, uint32_t samples, uint32_t tileSize, std::string& error);
     // Zeroes the counts of dropped rectangles (once a frame, before the passes).
     void clearCounts() const;
     // Reduces `depthTexture` (the target's depth attachment) into the tiles. No draw may be
@@ -62,6 +69,7 @@ public:
     // grid is padded to a multiple of 2^(levels - 1) each way; a tile past the target holds
     // 1, the nearest depth, so that it never makes a coarser one look farther.
     uint32_t texture() const { return texture_; }
+    uint32_t tileSize() const { return tileSize_; }
     uint32_t columns() const { return columns_; }
     uint32_t rows() const { return rows_; }
     uint32_t levels() const { return levels_; }
@@ -72,7 +80,7 @@ public:
 
 private:
     render::ShaderProgram program_, reduceProgram_;
-    uint32_t texture_ = 0, counts_ = 0, columns_ = 0, rows_ = 0, samples_ = 1;
+    uint32_t texture_ = 0, counts_ = 0, columns_ = 0, rows_ = 0, samples_ = 1, tileSize_ = kDepthTileSize;
     uint32_t levels_ = 1, paddedColumns_ = 0, paddedRows_ = 0;
     uint32_t builtLevels_ = 1; // the levels the last build reduced
     render::BufferReadback readback_;
