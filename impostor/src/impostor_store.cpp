@@ -15,6 +15,7 @@
 
 #include <cctype>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <unistd.h>
@@ -171,6 +172,15 @@ bool readImpostorFile(const std::string& path, ImpostorAtlas& out, std::string& 
         atlas.boundsMax = {boundsMax->value().x, boundsMax->value().y, boundsMax->value().z};
         atlas.centre = {centre->value().x, centre->value().y, centre->value().z};
         atlas.radius = radius->value();
+        // Reconstruction and the cull divide by the radius and place views around the centre.
+        if (!(std::isfinite(atlas.radius) && atlas.radius > 0.0f) ||
+            !std::isfinite(atlas.centre.x + atlas.centre.y + atlas.centre.z) ||
+            !std::isfinite(atlas.boundsMin.x + atlas.boundsMin.y + atlas.boundsMin.z) ||
+            !std::isfinite(atlas.boundsMax.x + atlas.boundsMax.y + atlas.boundsMax.z)) {
+            error = path + ": the bounding sphere needs a positive radius, and it and the bounds finite "
+                           "values";
+            return false;
+        }
         atlas.contentKey = std::strtoull(key->value().c_str(), nullptr, 16);
         HalfPlanes planes(size);
         file.setFrameBuffer(planes.frame());

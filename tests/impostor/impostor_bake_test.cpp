@@ -12,9 +12,11 @@
 #include "hexlod/render/image_metrics.h"
 #include "hexlod/render/terminal_mesh_library.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <string_view>
 
 namespace hexlod::impostor {
 namespace {
@@ -182,6 +184,20 @@ TEST_F(ImpostorBakeTest, CorruptTruncatedAndForeignFilesAreDetectedAndRemoved) {
     }
     expectCorrupt("oversized attribute");
     EXPECT_NE(reason.find("size"), std::string::npos) << reason;
+    // A bounding sphere that is not one, or bounds that are not finite.
+    for (const char* what :
+         {"negative radius", "zero radius", "NaN radius", "infinite centre", "NaN bounds"}) {
+        ImpostorAtlas broken = atlas;
+        const std::string_view name = what;
+        if (name == "negative radius") broken.radius = -6.0f;
+        if (name == "zero radius") broken.radius = 0.0f;
+        if (name == "NaN radius") broken.radius = std::nanf("");
+        if (name == "infinite centre") broken.centre.y = INFINITY;
+        if (name == "NaN bounds") broken.boundsMax.z = std::nanf("");
+        ASSERT_TRUE(writeImpostorFile(path, broken, error)) << error;
+        expectCorrupt(what);
+        EXPECT_NE(reason.find("radius"), std::string::npos) << what << ": " << reason;
+    }
     // A valid impostor filed under another key.
     ImpostorAtlas other = atlas;
     other.contentKey = atlas.contentKey + 7;
