@@ -2,6 +2,8 @@
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/render/gl_api.h"
 
+#include <algorithm>
+
 namespace hexlod::lod {
 namespace {
 
@@ -91,16 +93,24 @@ uint64_t DepthTiles::byteSize() const {
 
 void DepthTiles::build(uint32_t depthTexture, bool coarserLevels) {
     program_.use();
+    // The gather's 2 x 2 footprint may reach past the target's last row or column.
+    if (samples_ <= 1) {
+        gl::glTextureParameteri(depthTexture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl::glTextureParameteri(depthTexture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
     gl::glBindTextureUnit(0, depthTexture);
     program_.set("depthTarget", 0);
     program_.set("tileSize", tileSize_);
+    // A thread reduces about kDepthTileSize pixels each way, whatever the tile size.
+    const uint32_t across = std::max(1u, kDepthTileSize / tileSize_);
+    program_.set("tilesAcross", across);
     program_.set("samples", samples_);
     gl::glBindImageTexture(0, texture_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     const auto dispatch = [](uint32_t columns, uint32_t rows) {
         gl::glDispatchCompute((columns + kLocalSize - 1) / kLocalSize, (rows + kLocalSize - 1) / kLocalSize,
                               1);
     };
-    dispatch(paddedColumns_, paddedRows_);
+    dispatch((paddedColumns_ + across - 1) / across, (paddedRows_ + across - 1) / across);
     builtLevels_ = coarserLevels ? levels_ : 1;
     if (builtLevels_ > 1) {
         reduceProgram_.use();
