@@ -25,7 +25,7 @@ float farthestOf(ivec2 tile, ivec2 size) {
             for (int s = 0; s < int(samples); ++s)
                 farthest = min(farthest, texelFetch(depthTarget, ivec2(x, y), s).r);
 #else
-    // Two by two pixels a lookup, at their shared corner: a third of the time of one pixel a
+    // Two by two pixels a lookup, at their shared corner: two thirds of the time of one pixel a
     // lookup on llvmpipe. Past the target's last row or column the sampler clamps, repeating
     // pixels already counted.
     vec2 pixel = 1.0 / vec2(size);
