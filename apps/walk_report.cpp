@@ -56,6 +56,8 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"cull_terminals", f.cullTerminals},
         {"cull_skipped_terminals", f.cullSkippedTerminals},
         {"cull_occluded_terminals", f.cullOccludedTerminals},
+        {"cull_facing_away_terminals", f.cullFacingAwayTerminals},
+        {"cull_billboard_terminals", f.cullBillboardTerminals},
         {"volumes_occluded", f.volumesOccluded},
         {"volumes_built", f.volumesBuilt},
         {"volume_buildings_occluded", f.volumeBuildingsOccluded},

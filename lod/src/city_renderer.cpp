@@ -320,7 +320,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                 if (!building) billboards.emplace_back(b, false);
                 inputs.batches.push_back({set.get(), &resident->pages,
                                           catalog_.cellOrigin(catalog_.batch(b).cell),
-                                          shapes_.shapeBase(catalog_.batch(b).grammar), &resident->spheres});
+                                          shapes_.shapeBase(catalog_.batch(b).grammar), &resident->bounds});
                 pinned.push_back(std::move(set));
                 ++stats.batchesDrawn;
                 if (building) volumes.push_back({&volumes_.acquire(b, 0.5f), b, 0.5f, false, 1.0f, 0});
@@ -432,6 +432,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.cullTerminals = cull_.pageStats().terminals;
     stats.cullSkippedTerminals = cull_.pageStats().skippedTerminals;
     stats.cullOccludedTerminals = cull_.pageStats().occludedTerminals;
+    stats.cullFacingAwayTerminals = cull_.pageStats().facingAwayTerminals;
+    stats.cullBillboardTerminals = cull_.pageStats().billboardTerminals;
     stats.cullMs = millisecondsSince(stageStart);
 
     // 5. The rest of the draws.

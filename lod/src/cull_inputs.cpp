@@ -70,6 +70,47 @@ bool hasCoarseListsOfItsOwn(const CullInputs& inputs, uint32_t s) {
     return inputs.shapeCoarse[s].w >= 0.0f && inputs.shapeImpostor.at(s);
 }
 
+// A set's records by shape (they are sorted by shape), read in increasing record order.
+class ShapeRuns {
+public:
+    ShapeRuns(const std::vector<uint32_t>& perShape, uint32_t records)
+        : perShape_(&perShape), records_(records), end_(perShape.empty() ? records : perShape[0]) {}
+
+    // How many records from `record` on, up to `last` (exclusive), share its shape, which
+    // shape() then names; `record` is not less than the last call's.
+    uint32_t from(uint32_t record, uint32_t last) {
+        while (record >= end_ && shape_ + 1 < perShape_->size()) end_ += (*perShape_)[++shape_];
+        if (record >= end_) end_ = records_; // counts short of the records: the last shape
+        return std::min(end_, last) - record;
+    }
+    uint32_t shape() const { return shape_; }
+
+private:
+    const std::vector<uint32_t>* perShape_;
+    uint32_t records_, shape_ = 0, end_;
+};
+
+// True only when every record of the page [first, first + count) is a tree part whose tree is a
+// billboard this frame (treeIsBillboard, which the pass tests first): the page's shapes are all
+// tree shapes and every tree id it spans is beyond the cut. `runs` is a copy: the caller's
+// walk goes on from where it was.
+bool pageTreesAreBillboards(const CullInputs& inputs, const CullBatchInput& batch, const PageBounds& page,
+                            ShapeRuns runs, uint32_t first, uint32_t count) {
+    if (!inputs.trees || inputs.shapeTree.empty() || inputs.frame.trees.x < 0.0f) return false;
+    for (uint32_t r = first; r < first + count;) {
+        r += runs.from(r, first + count);
+        if (!inputs.shapeTree[batch.shapeBase + runs.shape()]) return false;
+    }
+    // A page's ids lie close together (one tree's leaves, or the trunks of a row of trees);
+    // a wider span is not worth testing id by id.
+    if (page.lastBuilding >= inputs.trees->size() ||
+        page.lastBuilding - page.firstBuilding >= kArenaPageRecords)
+        return false;
+    for (uint32_t id = page.firstBuilding; id <= page.lastBuilding; ++id)
+        if (!shared::treeIsBillboard(glm::vec3((*inputs.trees)[id]), inputs.frame)) return false;
+    return true;
+}
+
 } // namespace
 
 CullPages selectCullPages(const CullInputs& inputs) {
@@ -86,16 +127,23 @@ CullPages selectCullPages(const CullInputs& inputs) {
         const uint32_t records = uint32_t(batch.set->records.size());
         const glm::vec3 origin(batch.cellOrigin - inputs.camera); // as the pass receives it
         // Records are sorted by shape: walk the shapes' ranges alongside the pages.
-        const std::vector<uint32_t>& perShape = batch.set->countPerShape;
-        uint32_t shape = 0, shapeEnd = perShape.empty() ? records : perShape[0];
+        ShapeRuns runs(batch.set->countPerShape, records);
         for (uint32_t page = 0, first = 0; first < records; ++page, first += kArenaPageRecords) {
             const uint32_t count = std::min(kArenaPageRecords, records - first);
-            if (batch.pageSpheres) {
-                const glm::vec4& sphere = (*batch.pageSpheres)[page];
-                if (!pageMayBeVisible(sphere, origin, inputs.frame)) {
+            if (batch.pageBounds) {
+                const PageBounds& bounds = (*batch.pageBounds)[page];
+                // The cheap tests first; the occlusion test reads tiles.
+                const bool outside = !pageMayBeVisible(bounds.sphere, origin, inputs.frame);
+                const bool facingAway = !outside && pageFacesAway(bounds, origin);
+                const bool billboards = !outside && !facingAway &&
+                                        pageTreesAreBillboards(inputs, batch, bounds, runs, first, count);
+                if (outside || facingAway || billboards) {
                     out.skippedTerminals += count;
+                    out.facingAwayTerminals += facingAway ? count : 0;
+                    out.billboardTerminals += billboards ? count : 0;
                     continue;
                 }
+                const glm::vec4& sphere = bounds.sphere;
                 if (std::isfinite(sphere.w) &&
                     tilesHideSphere(inputs.frame, inputs.occlusionTiles,
                                     glm::vec4(glm::vec3(sphere) + origin, sphere.w),
@@ -108,17 +156,15 @@ CullPages selectCullPages(const CullInputs& inputs) {
             out.pages.emplace_back(b, batch.pages ? (*batch.pages)[page] : first, count, 0u);
             out.terminals += count;
             const bool lod4 =
-                !batch.pageSpheres || pageMayHoldLod4((*batch.pageSpheres)[page], origin, inputs.frame);
+                !batch.pageBounds || pageMayHoldLod4((*batch.pageBounds)[page].sphere, origin, inputs.frame);
             const bool lod3 =
-                !batch.pageSpheres || pageMayHoldLod3((*batch.pageSpheres)[page], origin, inputs.frame);
+                !batch.pageBounds || pageMayHoldLod3((*batch.pageBounds)[page].sphere, origin, inputs.frame);
             for (uint32_t r = first; r < first + count;) {
-                while (r >= shapeEnd && shape + 1 < perShape.size()) shapeEnd += perShape[++shape];
-                if (r >= shapeEnd) shapeEnd = records; // counts short of the records: the last shape
-                const uint32_t run = std::min(shapeEnd, first + count) - r;
-                layout.capacity[batch.shapeBase + shape] += run;
-                if (lod4) withinLod4[batch.shapeBase + shape] += run;
-                if (lod3 && inputs.shapeImpostor[batch.shapeBase + shape])
-                    layout.lod3Capacity[batch.shapeBase + shape] += run;
+                const uint32_t run = runs.from(r, first + count);
+                const uint32_t shape = batch.shapeBase + runs.shape();
+                layout.capacity[shape] += run;
+                if (lod4) withinLod4[shape] += run;
+                if (lod3 && inputs.shapeImpostor[shape]) layout.lod3Capacity[shape] += run;
                 r += run;
             }
         }

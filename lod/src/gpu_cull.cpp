@@ -68,7 +68,8 @@ void GpuCull::run(const CullInputs& inputs, uint32_t arena, std::span<const Mesh
     shapeCount_ = inputs.shapeCount;
     CullPages selected = selectCullPages(inputs);
     layout_ = std::move(selected.layout);
-    stats_ = {selected.terminals, selected.skippedTerminals, selected.occludedTerminals};
+    stats_ = {selected.terminals, selected.skippedTerminals, selected.occludedTerminals,
+              selected.facingAwayTerminals, selected.billboardTerminals};
     const std::vector<glm::uvec4>& workgroups = selected.pages; // one per page
 
     std::vector<shared::CullBatch> batches;

@@ -1,4 +1,5 @@
-// Page spheres: the bounding box of the terminals' sphere centres, then the farthest sphere.
+// Page bounds: the bounding box of the terminals' sphere centres, then the farthest sphere;
+// the walls the terminals face; the building ids they span.
 #include "hexlod/lod/page_bounds.h"
 #include "hexlod/lod/terminal_arena.h"
 
@@ -12,17 +13,52 @@
 namespace hexlod::lod {
 namespace {
 
-// classifyTerminal's sphere of one terminal, relative to its cell origin.
-glm::dvec4 terminalSphere(const grammar::TerminalRecord& record) {
+// classifyTerminal's sphere of one terminal, relative to its cell origin, and the two values
+// its backface test reads: the normal its wall faces and dot(normal, corner) - depth.
+struct TerminalBounds {
+    glm::dvec4 sphere;
+    glm::vec3 normal;
+    double wallOffset;
+};
+
+TerminalBounds terminalBounds(const grammar::TerminalRecord& record) {
     gpu::GpuTerminal t;
     std::memcpy(&t, &record, sizeof t);
     glm::vec3 axisX, axisY, axisZ;
     shared::terminalAxes(t, axisX, axisY, axisZ);
-    const double width = shared::halfToFloat(t.size & 0xffffu), height = shared::halfToFloat(t.size >> 16);
-    const double depth = shared::halfToFloat(t.shapeAndDepth >> 16) * std::min(width, height);
+    const float width = shared::halfToFloat(t.size & 0xffffu), height = shared::halfToFloat(t.size >> 16);
+    // In float, as classifyTerminal computes it.
+    const float depth = shared::halfToFloat(t.shapeAndDepth >> 16) * std::min(width, height);
     const glm::dvec3 centre =
         glm::dvec3(t.position) + glm::dvec3(axisX) * (0.5 * width) + glm::dvec3(axisY) * (0.5 * height);
-    return {centre, 0.5 * std::sqrt(width * width + height * height + 4.0 * depth * depth)};
+    const double w = width, h = height, d = depth;
+    return {glm::dvec4(centre, 0.5 * std::sqrt(w * w + h * h + 4.0 * d * d)), axisZ,
+            glm::dot(glm::dvec3(axisZ), glm::dvec3(t.position)) - d};
+}
+
+// The page's faces from its terminals: the normals exactly as classifyTerminal computes them,
+// so that the terminals of one wall share one; each offset rounded down, so the test stays
+// loose. None when the terminals face more walls than a page holds.
+void setFaces(const TerminalBounds* terminals, size_t count, PageBounds& page) {
+    double offsets[std::size(page.faces)];
+    for (size_t i = 0; i < count; ++i) {
+        uint32_t f = 0;
+        while (f < page.faceCount && glm::vec3(page.faces[f]) != terminals[i].normal) ++f;
+        if (f == std::size(page.faces)) {
+            page.faceCount = 0;
+            return;
+        }
+        if (f == page.faceCount) {
+            page.faces[page.faceCount++] = glm::vec4(terminals[i].normal, 0.0f);
+            offsets[f] = terminals[i].wallOffset;
+        }
+        offsets[f] = std::min(offsets[f], terminals[i].wallOffset);
+    }
+    for (uint32_t f = 0; f < page.faceCount; ++f) {
+        page.faces[f].w = float(offsets[f]);
+        if (double(page.faces[f].w) > offsets[f])
+            page.faces[f].w = std::nextafter(page.faces[f].w, -INFINITY);
+    }
 }
 
 // Whether some point of `sphere` lies nearer the camera than the square root of
@@ -37,33 +73,43 @@ bool pageReachesWithin(const glm::vec4& sphere, const glm::vec3& origin, float d
 
 } // namespace
 
-std::vector<glm::vec4> pageSpheres(const grammar::TerminalSet& set) {
+std::vector<PageBounds> pageBounds(const grammar::TerminalSet& set) {
     const size_t records = set.records.size();
-    std::vector<glm::vec4> spheres;
-    spheres.reserve((records + kArenaPageRecords - 1) / kArenaPageRecords);
-    glm::dvec4 terminal[kArenaPageRecords];
+    std::vector<PageBounds> pages;
+    pages.reserve((records + kArenaPageRecords - 1) / kArenaPageRecords);
+    TerminalBounds terminal[kArenaPageRecords];
     for (size_t first = 0; first < records; first += kArenaPageRecords) {
         const size_t count = std::min<size_t>(kArenaPageRecords, records - first);
+        PageBounds page;
         glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
         bool finite = true;
+        page.firstBuilding = page.lastBuilding = set.records[first].building;
         for (size_t i = 0; i < count; ++i) {
-            terminal[i] = terminalSphere(set.records[first + i]);
-            finite = finite && std::isfinite(terminal[i].x) && std::isfinite(terminal[i].y) &&
-                     std::isfinite(terminal[i].z) && std::isfinite(terminal[i].w);
-            lo = glm::min(lo, glm::dvec3(terminal[i]));
-            hi = glm::max(hi, glm::dvec3(terminal[i]));
+            const grammar::TerminalRecord& record = set.records[first + i];
+            terminal[i] = terminalBounds(record);
+            const glm::dvec4& sphere = terminal[i].sphere;
+            finite = finite && std::isfinite(sphere.x) && std::isfinite(sphere.y) &&
+                     std::isfinite(sphere.z) && std::isfinite(sphere.w) &&
+                     std::isfinite(terminal[i].wallOffset);
+            lo = glm::min(lo, glm::dvec3(sphere));
+            hi = glm::max(hi, glm::dvec3(sphere));
+            page.firstBuilding = std::min(page.firstBuilding, record.building);
+            page.lastBuilding = std::max(page.lastBuilding, record.building);
         }
         const glm::dvec3 centre = 0.5 * (lo + hi);
         double radius = 0.0;
         for (size_t i = 0; i < count; ++i)
-            radius = std::max(radius, glm::length(glm::dvec3(terminal[i]) - centre) + terminal[i].w);
+            radius =
+                std::max(radius, glm::length(glm::dvec3(terminal[i].sphere) - centre) + terminal[i].sphere.w);
         // Both tests run in float on camera-relative values: a centimetre plus a part in 1e5
         // of the page's size and place covers their rounding many times over.
         radius += 0.01 + 1e-5 * (radius + glm::length(centre));
-        spheres.emplace_back(glm::vec3(centre),
-                             finite ? float(radius) : std::numeric_limits<float>::infinity());
+        page.sphere =
+            glm::vec4(glm::vec3(centre), finite ? float(radius) : std::numeric_limits<float>::infinity());
+        if (finite) setFaces(terminal, count, page);
+        pages.push_back(page);
     }
-    return spheres;
+    return pages;
 }
 
 bool pageMayBeVisible(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame) {
@@ -73,6 +119,20 @@ bool pageMayBeVisible(const glm::vec4& sphere, const glm::vec3& origin, const sh
     const float slack = 1e-5f * glm::length(centre);
     for (const glm::vec4& plane : frame.planes)
         if (glm::dot(glm::vec3(plane), centre) + plane.w < -(sphere.w + slack)) return false;
+    return true;
+}
+
+bool pageFacesAway(const PageBounds& page, const glm::vec3& origin) {
+    if (page.faceCount == 0) return false;
+    // classifyTerminal reads the corner as position + origin in float, and the normal as the GPU
+    // rounds it: a centimetre plus a part in 1e5 of the distances involved covers both, as the
+    // sphere's padding does.
+    const double slack = 0.01 + 1e-5 * (glm::length(glm::dvec3(origin)) +
+                                        glm::length(glm::dvec3(page.sphere)) + page.sphere.w);
+    for (uint32_t f = 0; f < page.faceCount; ++f) {
+        const glm::vec4& face = page.faces[f];
+        if (!(double(face.w) + glm::dot(glm::dvec3(face), glm::dvec3(origin)) > slack)) return false;
+    }
     return true;
 }
 

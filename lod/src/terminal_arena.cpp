@@ -102,7 +102,7 @@ const ArenaBatch* TerminalArena::acquire(uint64_t key, const grammar::TerminalSe
                                  set.records.data() + first);
         p += run;
     }
-    slot.batch.spheres = pageSpheres(set);
+    slot.batch.bounds = pageBounds(set);
     stats_.residentRecords += records;
     ++stats_.uploads;
     stats_.uploadedBytes += records * sizeof(grammar::TerminalRecord);

@@ -1,6 +1,7 @@
 // The GPU cull and LOD pass against its CPU reference: identical visible sets and LOD choices
 // on random terminals and cameras, and the culling rules themselves on hand-placed terminals.
 #include "../render/gl_fixture.h"
+#include "cull_lists.h"
 
 #include "hexlod/lod/cpu_cull.h"
 #include "hexlod/lod/gpu_cull.h"
@@ -46,15 +47,6 @@ TerminalSet randomSet(std::mt19937& random, uint32_t count, uint32_t shapes, flo
     for (const auto& r : records) ++set.countPerShape[r.shapeAndDepth & 0xffff];
     set.records.assign(records.begin(), records.end());
     return set;
-}
-
-// A record's identity in a list, whatever order the atomics gave it: every word but the
-// transition factor (which is not part of the decision).
-std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t>
-identity(const gpu::GpuTerminal& t) {
-    uint32_t p[3];
-    std::memcpy(p, &t.position, sizeof p);
-    return {p[0], p[1], p[2], t.orientation.x, t.orientation.y, t.size, t.shapeAndDepth};
 }
 
 class CullTest : public render::GlTest {};
@@ -108,7 +100,7 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
             ASSERT_TRUE(resident);
             inputs.batches.push_back({&sets[b], &resident->pages,
                                       cityOrigin + glm::dvec3(250.0 * (b % 4), 250.0 * (b / 4), 0.0),
-                                      uint32_t(b % 2) * shapesPerGrammar, &resident->spheres});
+                                      uint32_t(b % 2) * shapesPerGrammar, &resident->bounds});
         }
         // Roughly toward the middle of the batches, so every trial sees some and misses some.
         const glm::dvec3 middle = cityOrigin + glm::dvec3(375.0, 250.0, 0.0) - inputs.camera;
@@ -159,29 +151,16 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
             if (s != coarse3) {
                 ASSERT_LE(counters[s].x + counters[s].w, layout.capacity[s]);
             }
-            auto gpuSorted = [&](uint32_t first, uint32_t count, const std::vector<gpu::GpuTerminal>& from) {
-                std::vector<decltype(identity(from[0]))> ids;
-                for (uint32_t i = 0; i < count; ++i) ids.push_back(identity(from[first + i]));
-                std::sort(ids.begin(), ids.end());
-                return ids;
-            };
-            auto cpuSorted = [&](const std::vector<CulledTerminal>& entries, uint32_t lod) {
-                std::vector<decltype(identity(lists[0]))> ids;
-                for (const CulledTerminal& e : entries)
-                    if (lod == 0 || e.lod == lod) ids.push_back(identity(e.record));
-                std::sort(ids.begin(), ids.end());
-                return ids;
-            };
             // The coarse shape of a shape without impostor fills the lists it shares from the back.
             const uint32_t lod4First =
                 s == coarse3 ? layout.base[s] + layout.capacity[s] - counters[s].x : layout.base[s];
-            EXPECT_EQ(gpuSorted(lod4First, counters[s].x, lists), cpuSorted(reference.lod4[s], 0))
+            EXPECT_EQ(sortedIds(lists, lod4First, counters[s].x), sortedIds(reference.lod4[s], 0))
                 << "shape " << s;
-            EXPECT_EQ(gpuSorted(layout.base[s] + layout.capacity[s] - counters[s].w, counters[s].w, lists),
-                      cpuSorted(reference.impostor[s], HEXLOD_LOD2))
+            EXPECT_EQ(sortedIds(lists, layout.base[s] + layout.capacity[s] - counters[s].w, counters[s].w),
+                      sortedIds(reference.impostor[s], HEXLOD_LOD2))
                 << "shape " << s;
-            EXPECT_EQ(gpuSorted(layout.lod3Base[s], counters[s].z, lod3Lists),
-                      cpuSorted(reference.impostor[s], HEXLOD_LOD3))
+            EXPECT_EQ(sortedIds(lod3Lists, layout.lod3Base[s], counters[s].z),
+                      sortedIds(reference.impostor[s], HEXLOD_LOD3))
                 << "shape " << s;
             visible += counters[s].x + counters[s].z + counters[s].w;
             // Only shapes with an impostor have LOD3 lists.
@@ -243,7 +222,7 @@ TEST_F(CullTest, TheGpuPassAgreesExactlyWithTheCpuReference) {
             // would cull some of them first; with no page skipped, the pass hides exactly the
             // reference's terminals.
             CullInputs everyPage = inputs;
-            for (CullBatchInput& batch : everyPage.batches) batch.pageSpheres = nullptr;
+            for (CullBatchInput& batch : everyPage.batches) batch.pageBounds = nullptr;
             cull.run(everyPage, arena.buffer(), meshes);
             EXPECT_EQ(cull.readOccluded(), reference.occluded) << "trial " << trial;
         }

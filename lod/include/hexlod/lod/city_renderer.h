@@ -87,8 +87,10 @@ struct FrameStats {
     uint64_t coarseTerminals = 0;              // of the LOD4 ones, drawn with a coarse mesh
     std::array<uint32_t, 5> cellsPerLod{};     // cells in view: 0 and 1 extruded, 4 with terminal sets
     // Terminals of the batches drawn: culled one by one on the GPU, or skipped with their
-    // arena page, whose bounds lie outside the frustum or behind the occlusion tiles.
-    uint64_t cullTerminals = 0, cullSkippedTerminals = 0;
+    // arena page, whose bounds lie outside the frustum or behind the occlusion tiles, or face
+    // away, or whose trees are all billboards (the last two counted apart too).
+    uint64_t cullTerminals = 0, cullSkippedTerminals = 0, cullFacingAwayTerminals = 0,
+             cullBillboardTerminals = 0;
     // Terminals the base volumes and ground hide: skipped with their page, or culled one by one.
     uint64_t cullOccludedTerminals = 0;
     // Batches of base volumes of extruded cells not drawn (nor built, when not resident): the

@@ -6,6 +6,7 @@
 #include "hexlod/cells/frustum.h"
 #include "hexlod/grammar/terminal_set.h"
 #include "hexlod/lod/cull_shared.h"
+#include "hexlod/lod/page_bounds.h"
 #include "hexlod/scene/scene_config.h"
 
 #include <glm/vec3.hpp>
@@ -21,10 +22,11 @@ struct CullBatchInput {
     const std::vector<uint32_t>* pages = nullptr; // where the arena holds its records (TerminalArena)
     glm::dvec3 cellOrigin{0.0};                   // world, what record positions are relative to
     uint32_t shapeBase = 0;                       // global index of its grammar's shape 0
-    // Per page, its bounds (pageSpheres): the GPU pass skips pages wholly outside the frustum.
-    // Null: every page is culled terminal by terminal. The CPU reference never skips a page,
-    // so that tests comparing the two also check that skipping loses no visible terminal.
-    const std::vector<glm::vec4>* pageSpheres = nullptr;
+    // Per page, its bounds: the GPU pass skips pages wholly outside the frustum, behind the
+    // occlusion tiles, facing away or of trees drawn as billboards (selectCullPages). Null:
+    // every page is culled terminal by terminal. The CPU reference never skips a page, so
+    // that tests comparing the two also check that skipping loses no visible terminal.
+    const std::vector<PageBounds>* pageBounds = nullptr;
 };
 
 struct CullInputs {
@@ -97,15 +99,19 @@ struct DrawListLayout {
     uint64_t lod3Total = 0;
 };
 
-// The pages the GPU pass culls terminal by terminal (every page of every batch but those its
-// sphere puts wholly outside the frustum or behind the occlusion tiles), one uvec4 each: batch index, first
-// arena record, records, 0; and the draw-list layout for their terminals.
+// The pages the GPU pass culls terminal by terminal, one uvec4 each: batch index, first arena
+// record, records, 0; and the draw-list layout for their terminals. Every page of every batch
+// but those whose bounds (page_bounds.h) lie wholly outside the frustum, face away from the
+// camera or lie behind the occlusion tiles, and those whose terminals are all parts of trees
+// drawn as billboards.
 struct CullPages {
     std::vector<glm::uvec4> pages;
     DrawListLayout layout;
-    uint64_t terminals = 0;         // in those pages
-    uint64_t skippedTerminals = 0;  // in the pages left out
-    uint64_t occludedTerminals = 0; // of those, in pages the occlusion tiles hide
+    uint64_t terminals = 0;           // in those pages
+    uint64_t skippedTerminals = 0;    // in the pages left out
+    uint64_t occludedTerminals = 0;   // of those, in pages the occlusion tiles hide
+    uint64_t facingAwayTerminals = 0; // of those, in pages facing away (pageFacesAway)
+    uint64_t billboardTerminals = 0;  // of those, in pages of trees drawn as billboards
 };
 CullPages selectCullPages(const CullInputs& inputs);
 

@@ -46,7 +46,8 @@ public:
     // The last run's terminals culled one by one, and those skipped with their page (of
     // which `occludedTerminals` behind the occlusion tiles).
     struct PageStats {
-        uint64_t terminals = 0, skippedTerminals = 0, occludedTerminals = 0;
+        uint64_t terminals = 0, skippedTerminals = 0, occludedTerminals = 0, facingAwayTerminals = 0,
+                 billboardTerminals = 0;
     };
     PageStats pageStats() const { return stats_; }
     uint32_t shapeCount() const { return shapeCount_; }

@@ -7,8 +7,7 @@
 #pragma once
 
 #include "hexlod/grammar/terminal_set.h"
-
-#include <glm/vec4.hpp>
+#include "hexlod/lod/page_bounds.h"
 
 #include <cstdint>
 #include <string>
@@ -34,7 +33,7 @@ struct ArenaStats {
 // A batch resident in the arena.
 struct ArenaBatch {
     std::vector<uint32_t> pages;    // first record of each page
-    std::vector<glm::vec4> spheres; // each page's bounds (pageSpheres), for culling it whole
+    std::vector<PageBounds> bounds; // each page's, for culling it whole
 };
 
 class TerminalArena {
