@@ -133,7 +133,7 @@ CullPages selectCullPages(const CullInputs& inputs) {
             if (batch.pageBounds) {
                 const PageBounds& bounds = (*batch.pageBounds)[page];
                 // The cheap tests first; the occlusion test reads tiles.
-                const bool outside = !pageMayBeVisible(bounds.sphere, origin, inputs.frame);
+                const bool outside = !pageMayBeVisible(bounds, origin, inputs.frame);
                 const bool facingAway = !outside && pageFacesAway(bounds, origin);
                 const bool billboards = !outside && !facingAway &&
                                         pageTreesAreBillboards(inputs, batch, bounds, runs, first, count);

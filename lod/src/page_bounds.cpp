@@ -1,5 +1,5 @@
-// Page bounds: the bounding box of the terminals' sphere centres, then the farthest sphere;
-// the walls the terminals face; the building ids they span.
+// Page bounds: a sphere and a box around the terminals' spheres, the walls the terminals face
+// and the building ids they span.
 #include "hexlod/lod/page_bounds.h"
 #include "hexlod/lod/terminal_arena.h"
 
@@ -34,6 +34,31 @@ TerminalBounds terminalBounds(const grammar::TerminalRecord& record) {
     const double w = width, h = height, d = depth;
     return {glm::dvec4(centre, 0.5 * std::sqrt(w * w + h * h + 4.0 * d * d)), axisZ,
             glm::dot(glm::dvec3(axisZ), glm::dvec3(t.position)) - d};
+}
+
+// The page's sphere: the bounding box of the terminals' sphere centres, then the farthest
+// sphere; and the box around the spheres.
+void setSphereAndBox(const TerminalBounds* terminals, size_t count, PageBounds& page) {
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    glm::dvec3 boxLo = lo, boxHi = hi;
+    for (size_t i = 0; i < count; ++i) {
+        const glm::dvec4& sphere = terminals[i].sphere;
+        lo = glm::min(lo, glm::dvec3(sphere));
+        hi = glm::max(hi, glm::dvec3(sphere));
+        boxLo = glm::min(boxLo, glm::dvec3(sphere) - sphere.w);
+        boxHi = glm::max(boxHi, glm::dvec3(sphere) + sphere.w);
+    }
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    double radius = 0.0;
+    for (size_t i = 0; i < count; ++i)
+        radius =
+            std::max(radius, glm::length(glm::dvec3(terminals[i].sphere) - centre) + terminals[i].sphere.w);
+    // Both tests run in float on camera-relative values: a centimetre plus a part in 1e5 of the
+    // page's size and place covers their rounding many times over.
+    const double padding = 0.01 + 1e-5 * (radius + glm::length(centre));
+    page.sphere = glm::vec4(glm::vec3(centre), float(radius + padding));
+    page.boxMin = glm::vec3(boxLo - padding);
+    page.boxMax = glm::vec3(boxHi + padding);
 }
 
 // The page's faces from its terminals: the normals exactly as classifyTerminal computes them,
@@ -81,7 +106,6 @@ std::vector<PageBounds> pageBounds(const grammar::TerminalSet& set) {
     for (size_t first = 0; first < records; first += kArenaPageRecords) {
         const size_t count = std::min<size_t>(kArenaPageRecords, records - first);
         PageBounds page;
-        glm::dvec3 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
         bool finite = true;
         page.firstBuilding = page.lastBuilding = set.records[first].building;
         for (size_t i = 0; i < count; ++i) {
@@ -91,22 +115,14 @@ std::vector<PageBounds> pageBounds(const grammar::TerminalSet& set) {
             finite = finite && std::isfinite(sphere.x) && std::isfinite(sphere.y) &&
                      std::isfinite(sphere.z) && std::isfinite(sphere.w) &&
                      std::isfinite(terminal[i].wallOffset);
-            lo = glm::min(lo, glm::dvec3(sphere));
-            hi = glm::max(hi, glm::dvec3(sphere));
             page.firstBuilding = std::min(page.firstBuilding, record.building);
             page.lastBuilding = std::max(page.lastBuilding, record.building);
         }
-        const glm::dvec3 centre = 0.5 * (lo + hi);
-        double radius = 0.0;
-        for (size_t i = 0; i < count; ++i)
-            radius =
-                std::max(radius, glm::length(glm::dvec3(terminal[i].sphere) - centre) + terminal[i].sphere.w);
-        // Both tests run in float on camera-relative values: a centimetre plus a part in 1e5
-        // of the page's size and place covers their rounding many times over.
-        radius += 0.01 + 1e-5 * (radius + glm::length(centre));
-        page.sphere =
-            glm::vec4(glm::vec3(centre), finite ? float(radius) : std::numeric_limits<float>::infinity());
-        if (finite) setFaces(terminal, count, page);
+        setSphereAndBox(terminal, count, page);
+        if (finite)
+            setFaces(terminal, count, page);
+        else
+            page.sphere.w = std::numeric_limits<float>::infinity(); // never culled whole
         pages.push_back(page);
     }
     return pages;
@@ -119,6 +135,21 @@ bool pageMayBeVisible(const glm::vec4& sphere, const glm::vec3& origin, const sh
     const float slack = 1e-5f * glm::length(centre);
     for (const glm::vec4& plane : frame.planes)
         if (glm::dot(glm::vec3(plane), centre) + plane.w < -(sphere.w + slack)) return false;
+    return true;
+}
+
+bool pageMayBeVisible(const PageBounds& page, const glm::vec3& origin, const shared::CullFrame& frame) {
+    if (!pageMayBeVisible(page.sphere, origin, frame)) return false;
+    if (!(page.sphere.w < std::numeric_limits<float>::infinity())) return true;
+    // The box is outside a plane when its corner farthest along the plane's (unit) normal is;
+    // each terminal's sphere lies within it. The same slack as the sphere's.
+    const float slack = 1e-5f * (glm::length(glm::vec3(page.sphere) + origin) + page.sphere.w);
+    for (const glm::vec4& plane : frame.planes) {
+        const glm::vec3 corner(plane.x >= 0.0f ? page.boxMax.x : page.boxMin.x,
+                               plane.y >= 0.0f ? page.boxMax.y : page.boxMin.y,
+                               plane.z >= 0.0f ? page.boxMax.z : page.boxMin.z);
+        if (glm::dot(glm::vec3(plane), corner + origin) + plane.w < -slack) return false;
+    }
     return true;
 }
 

@@ -34,11 +34,10 @@ glm::vec3 wallNormal(uint32_t wall) {
 // A facade part on wall `wall` of a `side` m square footprint centred at `centre`, `along` of
 // the way along the wall and `height` m up: its axes as a facade's (x along the wall, y up, z
 // out of it).
-TerminalRecord wallPart(glm::vec2 centre, float side, uint32_t wall, float along, float height, glm::vec2 size,
-                        float depthRatio, uint16_t shape, uint32_t building) {
+TerminalRecord wallPart(glm::vec2 centre, float side, uint32_t wall, float along, float height,
+                        glm::vec2 size, float depthRatio, uint16_t shape, uint32_t building) {
     const glm::vec3 z = wallNormal(wall), y(0, 0, 1), x = glm::cross(y, z);
-    const glm::vec3 corner =
-        glm::vec3(centre, height) + z * (0.5f * side) + x * ((along - 0.5f) * side);
+    const glm::vec3 corner = glm::vec3(centre, height) + z * (0.5f * side) + x * ((along - 0.5f) * side);
     return grammar::packTerminal(corner, x, y, z, size, depthRatio, shape, building);
 }
 
@@ -46,7 +45,8 @@ TerminalRecord wallPart(glm::vec2 centre, float side, uint32_t wall, float along
 // of one building keep their order.
 TerminalSet setOf(std::vector<TerminalRecord> records, uint32_t shapes) {
     std::stable_sort(records.begin(), records.end(), [](const TerminalRecord& a, const TerminalRecord& b) {
-        return std::tuple(a.shapeAndDepth & 0xffffu, a.building) < std::tuple(b.shapeAndDepth & 0xffffu, b.building);
+        return std::tuple(a.shapeAndDepth & 0xffffu, a.building) <
+               std::tuple(b.shapeAndDepth & 0xffffu, b.building);
     });
     TerminalSet set;
     set.countPerShape.assign(shapes, 0);
@@ -67,8 +67,8 @@ TerminalSet buildingSet(std::mt19937& random, uint32_t buildings, uint32_t shape
             const uint16_t wallShape = uint16_t(shape(random));
             for (uint32_t i = parts(random); i > 0; --i)
                 records.push_back(wallPart(centre, 20.0f, wall, unit(random), 40.0f * unit(random),
-                                           glm::vec2(size(random), size(random)), 0.5f * unit(random), wallShape,
-                                           b));
+                                           glm::vec2(size(random), size(random)), 0.5f * unit(random),
+                                           wallShape, b));
         }
     }
     return setOf(std::move(records), shapes);
@@ -86,16 +86,18 @@ TerminalSet treeSet(std::mt19937& random, uint32_t firstTree, uint32_t count, fl
     auto part = [&](glm::vec3 at, uint16_t shape, uint32_t tree) {
         const glm::mat3 axes =
             glm::mat3_cast(glm::normalize(glm::quat(unit(random), unit(random), unit(random), unit(random))));
-        records.push_back(grammar::packTerminal(at, axes[0], axes[1], axes[2], glm::vec2(size(random)), 0.3f,
-                                                shape, tree));
+        records.push_back(
+            grammar::packTerminal(at, axes[0], axes[1], axes[2], glm::vec2(size(random)), 0.3f, shape, tree));
     };
     for (uint32_t tree = firstTree; tree < firstTree + count; ++tree) {
         const glm::vec3 root(place(random), place(random), 0.0f);
         trees[tree] = glm::vec4(root, 0.0f);
         part(root, 1, tree);
-        for (uint32_t i = branches(random); i > 0; --i) part(root + glm::vec3(0, 0, 3.0f + unit(random)), 2, tree);
+        for (uint32_t i = branches(random); i > 0; --i)
+            part(root + glm::vec3(0, 0, 3.0f + unit(random)), 2, tree);
         for (uint32_t i = leaves(random); i > 0; --i)
-            part(root + glm::vec3(4.0f * unit(random), 4.0f * unit(random), 6.0f + 3.0f * unit(random)), 0, tree);
+            part(root + glm::vec3(4.0f * unit(random), 4.0f * unit(random), 6.0f + 3.0f * unit(random)), 0,
+                 tree);
     }
     return setOf(std::move(records), 3);
 }
@@ -117,8 +119,8 @@ TEST(PageBoundsTest, APageFacesAwayOnlyWhenTheCameraIsBehindEachOfItsWalls) {
     // 20 m building, 2 m square and 0.5 m deep.
     std::vector<TerminalRecord> records;
     for (uint32_t i = 0; i < 64; ++i)
-        records.push_back(wallPart(glm::vec2(0.0f), 20.0f, i < 40 ? 0 : 1, float(i % 8) / 8.0f, float(i / 8) * 3.0f,
-                                   glm::vec2(2.0f), 0.25f, 0, 7));
+        records.push_back(wallPart(glm::vec2(0.0f), 20.0f, i < 40 ? 0 : 1, float(i % 8) / 8.0f,
+                                   float(i / 8) * 3.0f, glm::vec2(2.0f), 0.25f, 0, 7));
     const TerminalSet set = setOf(records, 1);
     const std::vector<PageBounds> pages = pageBounds(set);
     ASSERT_EQ(pages.size(), 1u);
@@ -144,7 +146,8 @@ TEST(PageBoundsTest, APageFacesAwayOnlyWhenTheCameraIsBehindEachOfItsWalls) {
 TEST(PageBoundsTest, MoreWallsThanAPageHoldsOrANonFiniteRecordGiveNoFaces) {
     std::vector<TerminalRecord> records;
     for (uint32_t i = 0; i < 30; ++i)
-        records.push_back(wallPart(glm::vec2(0.0f), 20.0f, i % 3, 0.5f, float(i), glm::vec2(2.0f), 0.25f, 0, i));
+        records.push_back(
+            wallPart(glm::vec2(0.0f), 20.0f, i % 3, 0.5f, float(i), glm::vec2(2.0f), 0.25f, 0, i));
     const std::vector<PageBounds> three = pageBounds(setOf(records, 1));
     EXPECT_EQ(three[0].faceCount, 0u);
     EXPECT_FALSE(pageFacesAway(three[0], glm::vec3(0.0f))); // from inside, behind all three walls
@@ -175,12 +178,13 @@ TEST(PageBoundsTest, FacingAwayIsNeverStricterThanTheTerminalsOwnTest) {
         const uint32_t firstWall = trial % 4, walls = 1 + trial % 2;
         std::vector<TerminalRecord> records;
         for (uint32_t i = 0; i < 64; ++i)
-            records.push_back(wallPart(centre, 5.0f + 40.0f * unit(random), firstWall + i % walls, unit(random),
-                                       50.0f * unit(random), glm::vec2(size(random), size(random)),
-                                       2.0f * unit(random), 0, 0));
+            records.push_back(wallPart(centre, 5.0f + 40.0f * unit(random), firstWall + i % walls,
+                                       unit(random), 50.0f * unit(random),
+                                       glm::vec2(size(random), size(random)), 2.0f * unit(random), 0, 0));
         const PageBounds page = pageBounds(setOf(records, 1))[0];
         ASSERT_EQ(page.faceCount, walls);
-        const glm::dvec3 camera = cellOrigin + glm::dvec3(centre, 0.0) + glm::dvec3(near(random), near(random), 2.0);
+        const glm::dvec3 camera =
+            cellOrigin + glm::dvec3(centre, 0.0) + glm::dvec3(near(random), near(random), 2.0);
         const glm::vec3 origin(cellOrigin - camera); // as the pass receives it
         const bool culled = std::all_of(records.begin(), records.end(),
                                         [&](const TerminalRecord& r) { return backfaceCulled(r, origin); });
@@ -194,15 +198,58 @@ TEST(PageBoundsTest, FacingAwayIsNeverStricterThanTheTerminalsOwnTest) {
     EXPECT_GE(double(facingAway), 0.95 * double(allCulled));
 }
 
+// Random pages of one or two walls, far from the world origin, against random frustums: a page
+// is outside only when classifyTerminal culls each of its terminals, and its box finds pages
+// outside that its sphere cannot (a wall's page is a thin slab).
+TEST(PageBoundsTest, APageIsOutsideTheFrustumOnlyWhenEachOfItsTerminalsIs) {
+    std::mt19937 random(78);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), size(0.3f, 6.0f);
+    std::uniform_real_distribution<double> place(-400.0, 400.0), near(-80.0, 80.0), heading(0.0, 6.283);
+    uint64_t outside = 0, byBoxAlone = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const glm::dvec3 cellOrigin(1e7 * (trial % 2), -3e6 * (trial % 3), 20.0);
+        const glm::vec2 centre(place(random), place(random));
+        std::vector<TerminalRecord> records;
+        for (uint32_t i = 0; i < 64; ++i)
+            records.push_back(wallPart(centre, 5.0f + 40.0f * unit(random), trial % 4 + i % (1 + trial % 2),
+                                       unit(random), 50.0f * unit(random),
+                                       glm::vec2(size(random), size(random)), 2.0f * unit(random), 0, 0));
+        const PageBounds page = pageBounds(setOf(records, 1))[0];
+        const glm::dvec3 camera =
+            cellOrigin + glm::dvec3(centre, 0.0) + glm::dvec3(near(random), near(random), 2.0);
+        const double a = heading(random);
+        const cells::Frustum frustum(camera, glm::dvec3(std::cos(a), std::sin(a), 0.1), glm::dvec3(0, 0, 1),
+                                     0.5, 16.0 / 9.0, 0.5, 2000.0);
+        shared::CullFrame frame = makeCullFrame(frustum, scene::LodProfile{}, 0.5, 720, 0.2, false);
+        const glm::vec3 origin(cellOrigin - camera);
+        if (pageMayBeVisible(page, origin, frame)) continue;
+        ++outside;
+        byBoxAlone += pageMayBeVisible(page.sphere, origin, frame);
+        for (const TerminalRecord& record : records) {
+            gpu::GpuTerminal t;
+            std::memcpy(&t, &record, sizeof t);
+            float transition;
+            glm::vec4 sphere;
+            EXPECT_EQ(shared::classifyTerminal(t, t.position + origin, frame, false, transition, sphere),
+                      HEXLOD_CULLED)
+                << "trial " << trial;
+        }
+    }
+    EXPECT_GT(outside, 1000u);
+    EXPECT_GT(byBoxAlone, 100u);
+}
+
 // selectCullPages over one tree batch: leaves a page per tree (trees 0 to 2), then the trunks
 // of all three in one page.
 TEST(PageBoundsTest, APageOfTreesIsSkippedOnlyWhenEachTreeItSpansIsABillboard) {
     std::vector<TerminalRecord> records;
     std::vector<glm::vec4> trees = {{0, 20, 0, 0}, {0, 200, 0, 0}, {0, 300, 0, 0}};
     for (uint32_t tree = 0; tree < 3; ++tree) {
-        records.push_back(wallPart(glm::vec2(trees[tree]), 1.0f, 0, 0.5f, 0.0f, glm::vec2(1.0f), 0.3f, 1, tree));
+        records.push_back(
+            wallPart(glm::vec2(trees[tree]), 1.0f, 0, 0.5f, 0.0f, glm::vec2(1.0f), 0.3f, 1, tree));
         for (uint32_t i = 0; i < 64; ++i)
-            records.push_back(wallPart(glm::vec2(trees[tree]), 4.0f, i % 4, 0.5f, 6.0f, glm::vec2(1.0f), 0.3f, 0, tree));
+            records.push_back(
+                wallPart(glm::vec2(trees[tree]), 4.0f, i % 4, 0.5f, 6.0f, glm::vec2(1.0f), 0.3f, 0, tree));
     }
     const TerminalSet set = setOf(records, 2);
     const std::vector<PageBounds> bounds = pageBounds(set);
@@ -214,7 +261,8 @@ TEST(PageBoundsTest, APageOfTreesIsSkippedOnlyWhenEachTreeItSpansIsABillboard) {
     inputs.trees = &trees;
     inputs.camera = glm::dvec3(0.0, 0.0, 1.7);
     inputs.batches.push_back({&set, nullptr, glm::dvec3(0.0), 0, &bounds});
-    const cells::Frustum frustum(inputs.camera, glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), 1.0, 1.5, 0.1, 5000.0);
+    const cells::Frustum frustum(inputs.camera, glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), 1.0, 1.5, 0.1,
+                                 5000.0);
     inputs.frame = makeCullFrame(frustum, scene::LodProfile{}, 1.0, 720, 0.2, false);
     const auto skipped = [&](double cut) {
         setTreeCut(inputs.frame, cut, glm::dvec3(0.0), inputs.camera);
@@ -286,7 +334,8 @@ TEST_F(PageSkipTest, PagesSkippedWholeHoldNothingThePassWouldDraw) {
         setTreeCut(inputs.frame, 60.0, cellOrigin, inputs.camera);
 
         const CullResult reference = cullOnCpu(inputs);
-        cull.run(inputs, arena.buffer(), std::vector<MeshDrawInfo>(inputs.shapeCount, MeshDrawInfo{36, 0, 0}));
+        cull.run(inputs, arena.buffer(),
+                 std::vector<MeshDrawInfo>(inputs.shapeCount, MeshDrawInfo{36, 0, 0}));
         const std::vector<glm::uvec4> counters = cull.readCounters();
         const std::vector<gpu::GpuTerminal> lists = cull.readLists(), lod3Lists = cull.readLod3Lists();
         const DrawListLayout& layout = cull.layout();
@@ -297,7 +346,8 @@ TEST_F(PageSkipTest, PagesSkippedWholeHoldNothingThePassWouldDraw) {
             ASSERT_EQ(counters[s].z, lod3.size()) << "shape " << s << " trial " << trial;
             ASSERT_EQ(counters[s].w, lod2.size()) << "shape " << s << " trial " << trial;
             EXPECT_EQ(sortedIds(lists, layout.base[s], counters[s].x), sortedIds(reference.lod4[s], 0));
-            EXPECT_EQ(sortedIds(lists, layout.base[s] + layout.capacity[s] - counters[s].w, counters[s].w), lod2);
+            EXPECT_EQ(sortedIds(lists, layout.base[s] + layout.capacity[s] - counters[s].w, counters[s].w),
+                      lod2);
             EXPECT_EQ(sortedIds(lod3Lists, layout.lod3Base[s], counters[s].z), lod3);
             visible += counters[s].x + counters[s].z + counters[s].w;
             if (inputs.shapeTree[s]) treeEntries += counters[s].x;

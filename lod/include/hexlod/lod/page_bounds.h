@@ -22,6 +22,9 @@ struct PageBounds {
     // either test cannot make the page test the stricter one. A page with a non-finite size or
     // position gets an infinite radius: it is never culled whole.
     glm::vec4 sphere{0.0f};
+    // The box around those spheres, padded likewise: a page of one wall is a thin slab, which
+    // its sphere bounds loosely.
+    glm::vec3 boxMin{0.0f}, boxMax{0.0f};
     // The page's wall planes, for backface culling it whole: each terminal's axisZ (the normal
     // its wall faces) is one of the first `faceCount` faces' xyz, and each face's w is the
     // least, over its terminals, of dot(normal, corner) - depth, cell-local. 0 faces: the page
@@ -39,6 +42,8 @@ std::vector<PageBounds> pageBounds(const grammar::TerminalSet& set);
 // wholly outside a frustum plane of `frame`, so that classifyTerminal would cull each of the
 // page's terminals.
 bool pageMayBeVisible(const glm::vec4& sphere, const glm::vec3& origin, const shared::CullFrame& frame);
+// The same for a page, by its sphere and then its box.
+bool pageMayBeVisible(const PageBounds& page, const glm::vec3& origin, const shared::CullFrame& frame);
 
 // True only when the camera lies behind every face of the page (PageBounds::faces) by more than
 // the terminals' depth, so that classifyTerminal's backface test culls each of its terminals.
