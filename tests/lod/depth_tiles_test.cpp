@@ -1,5 +1,5 @@
-// The depth tiles' levels: each coarser tile holds the farthest depth of the tiles under it,
-// and the vertex-stage test (depth_tiles.glsl) drops a rectangle over the whole screen when
+// The depth tiles' levels: each coarser tile holds the farthest depth of the tiles under it, of
+// every sample where the target is multisampled, and the vertex-stage test (depth_tiles.glsl) drops a rectangle over the whole screen when
 // the tiles hide it, which at one level it could not afford to look up.
 #include "../render/gl_fixture.h"
 
@@ -48,6 +48,42 @@ std::vector<float> coarser(const std::vector<float>& finer, uint32_t columns, ui
     return out;
 }
 
+// Every level of `tiles`, built over a width x height target whose pixels' farthest depths are
+// `farthest` (row by row from the bottom), against the CPU's reduction; and the copy read back.
+void expectLevels(DepthTiles& tiles, const std::vector<float>& farthest, uint32_t width, uint32_t height,
+                  const std::string& what) {
+    const uint32_t tileSize = tiles.tileSize();
+    // Enough levels that the coarsest covers the target in kDepthTileLookups tiles.
+    const uint32_t coarsest = tiles.levels() - 1;
+    const uint32_t step = 1u << coarsest;
+    EXPECT_LE(((tiles.columns() + step - 1) / step) * ((tiles.rows() + step - 1) / step), kDepthTileLookups)
+        << what;
+    EXPECT_EQ(tiles.paddedColumns() % step, 0u) << what;
+    EXPECT_EQ(tiles.paddedRows() % step, 0u) << what;
+
+    // Level 0: the farthest depth of each tile's pixels; 1 past the target.
+    std::vector<float> expected(size_t(tiles.paddedColumns()) * tiles.paddedRows(), 1.0f);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            float& tile = expected[(y / tileSize) * tiles.paddedColumns() + x / tileSize];
+            tile = std::min(tile, farthest[size_t(y) * width + x]);
+        }
+    uint32_t columns = tiles.paddedColumns(), rows = tiles.paddedRows();
+    for (uint32_t level = 0; level < tiles.levels(); ++level) {
+        EXPECT_EQ(tiles.readLevel(level), expected) << what << ", level " << level;
+        expected = coarser(expected, columns, rows);
+        columns /= 2;
+        rows /= 2;
+    }
+    // The copy the CPU tests read: level 0 without the padding.
+    const std::vector<float> unpadded = tiles.read();
+    ASSERT_EQ(unpadded.size(), size_t(tiles.columns()) * tiles.rows()) << what;
+    const std::vector<float> level0 = tiles.readLevel(0);
+    for (uint32_t y = 0; y < tiles.rows(); ++y)
+        for (uint32_t x = 0; x < tiles.columns(); ++x)
+            EXPECT_EQ(unpadded[y * tiles.columns() + x], level0[y * tiles.paddedColumns() + x]) << what;
+}
+
 TEST_F(DepthTilesTest, EveryCoarserTileHoldsTheFarthestDepthOfTheTilesUnderIt) {
     // Sizes whose tiles do not halve evenly, so the grid is padded; the cull's tiles and the
     // base volume rings' finer ones.
@@ -63,41 +99,68 @@ TEST_F(DepthTilesTest, EveryCoarserTileHoldsTheFarthestDepthOfTheTilesUnderIt) {
             ASSERT_TRUE(tiles.init(width, height, 1, tileSize, error)) << error;
             EXPECT_EQ(tiles.tileSize(), tileSize);
             tiles.build(depthTexture(width, height, depths), true);
-            const std::string what = std::to_string(width) + " x " + std::to_string(height) +
-                                     " in tiles of " + std::to_string(tileSize);
-
-            // Enough levels that the coarsest covers the target in kDepthTileLookups tiles.
-            const uint32_t coarsest = tiles.levels() - 1;
-            const uint32_t step = 1u << coarsest;
-            EXPECT_LE(((tiles.columns() + step - 1) / step) * ((tiles.rows() + step - 1) / step),
-                      kDepthTileLookups)
-                << what;
-            EXPECT_EQ(tiles.paddedColumns() % step, 0u) << what;
-            EXPECT_EQ(tiles.paddedRows() % step, 0u) << what;
-
-            // Level 0: the farthest depth of each tile's pixels; 1 past the target.
-            std::vector<float> expected(size_t(tiles.paddedColumns()) * tiles.paddedRows(), 1.0f);
-            for (uint32_t y = 0; y < height; ++y)
-                for (uint32_t x = 0; x < width; ++x) {
-                    float& tile = expected[(y / tileSize) * tiles.paddedColumns() + x / tileSize];
-                    tile = std::min(tile, depths[size_t(y) * width + x]);
-                }
-            uint32_t columns = tiles.paddedColumns(), rows = tiles.paddedRows();
-            for (uint32_t level = 0; level < tiles.levels(); ++level) {
-                EXPECT_EQ(tiles.readLevel(level), expected) << what << ", level " << level;
-                expected = coarser(expected, columns, rows);
-                columns /= 2;
-                rows /= 2;
-            }
-            // The copy the CPU tests read: level 0 without the padding.
-            const std::vector<float> unpadded = tiles.read();
-            ASSERT_EQ(unpadded.size(), size_t(tiles.columns()) * tiles.rows()) << what;
-            const std::vector<float> level0 = tiles.readLevel(0);
-            for (uint32_t y = 0; y < tiles.rows(); ++y)
-                for (uint32_t x = 0; x < tiles.columns(); ++x)
-                    EXPECT_EQ(unpadded[y * tiles.columns() + x], level0[y * tiles.paddedColumns() + x])
-                        << what;
+            expectLevels(tiles, depths, width, height,
+                         std::to_string(width) + " x " + std::to_string(height) + " in tiles of " +
+                             std::to_string(tileSize));
         }
+}
+
+// A multisampled target is reduced over every sample of every pixel: each sample of each pixel
+// gets its own depth (the fragment shader reads gl_SampleID, so it runs per sample).
+TEST_F(DepthTilesTest, AMultisampledTargetIsReducedOverEverySample) {
+    constexpr uint32_t kSamples = 4;
+    std::string error;
+    if (!render::unsupportedSamples(kSamples).empty()) GTEST_SKIP() << render::unsupportedSamples(kSamples);
+    render::ShaderLibrary library = lodShaderLibrary();
+    library.add("fill.vert", "#version 450 core\n"
+                             "void main() {\n"
+                             "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
+                             "    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n"
+                             "}\n");
+    // Depths exact in float: the CPU computes the same.
+    library.add("fill.frag",
+                "#version 450 core\n"
+                "void main() {\n"
+                "    ivec2 p = ivec2(gl_FragCoord.xy);\n"
+                "    gl_FragDepth = float((p.x * 7 + p.y * 13 + gl_SampleID * 29) % 97) / 128.0;\n"
+                "}\n");
+    const render::ShaderProgram fill = render::ShaderProgram::build(
+        library, {{render::ShaderStage::Vertex, "fill.vert"}, {render::ShaderStage::Fragment, "fill.frag"}},
+        "", error);
+    ASSERT_TRUE(fill.valid()) << error;
+    uint32_t vao = 0;
+    gl::glCreateVertexArrays(1, &vao);
+    for (const uint32_t tileSize : {kDepthTileSize, kVolumeTileSize})
+        for (const auto& [width, height] : {std::pair{300u, 170u}, std::pair{64u, 48u}}) {
+            render::Framebuffer target;
+            ASSERT_TRUE(
+                render::Framebuffer::create({width, height, {GL_RGBA8}, true, kSamples}, target, error))
+                << error;
+            target.bind();
+            target.clear(0.0f, 0.0f, 0.0f, 1.0f, 1.0f);
+            gl::glEnable(GL_DEPTH_TEST);
+            gl::glDepthFunc(GL_ALWAYS);
+            gl::glDepthMask(GL_TRUE);
+            fill.use();
+            gl::glBindVertexArray(vao);
+            gl::glDrawArrays(GL_TRIANGLES, 0, 3);
+            gl::glBindVertexArray(0);
+            gl::glDepthFunc(GL_LESS);
+            gl::glDisable(GL_DEPTH_TEST);
+            std::vector<float> farthest(size_t(width) * height, 1.0f);
+            for (uint32_t y = 0; y < height; ++y)
+                for (uint32_t x = 0; x < width; ++x)
+                    for (uint32_t s = 0; s < kSamples; ++s)
+                        farthest[size_t(y) * width + x] = std::min(
+                            farthest[size_t(y) * width + x], float((x * 7 + y * 13 + s * 29) % 97) / 128.0f);
+            DepthTiles tiles;
+            ASSERT_TRUE(tiles.init(width, height, kSamples, tileSize, error)) << error;
+            tiles.build(target.depthTexture(), true);
+            expectLevels(tiles, farthest, width, height,
+                         std::to_string(width) + " x " + std::to_string(height) + " at " +
+                             std::to_string(kSamples) + " samples in tiles of " + std::to_string(tileSize));
+        }
+    gl::glDeleteVertexArrays(1, &vao);
 }
 
 // Runs behindDepthTiles once per rectangle in a vertex shader (no rasterisation).
