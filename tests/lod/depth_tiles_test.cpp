@@ -1,6 +1,7 @@
-// The depth tiles' levels: each coarser tile holds the farthest depth of the tiles under it, of
-// every sample where the target is multisampled, and the vertex-stage test (depth_tiles.glsl) drops a rectangle over the whole screen when
-// the tiles hide it, which at one level it could not afford to look up.
+// The depth tiles' levels: each coarser tile holds the farthest depth of the tiles under it (of
+// every sample where the target is multisampled), and the vertex-stage test (depth_tiles.glsl)
+// drops a rectangle over the whole screen when the tiles hide it, which at one level it could
+// not afford to look up.
 #include "../render/gl_fixture.h"
 
 #include "hexlod/lod/depth_tiles.h"
