@@ -14,12 +14,20 @@ struct GpuShape {
     vec4 boundsMin, boundsMax;
 };
 
-vec3 shade(vec3 albedo, vec3 normal, vec3 cameraRelative) {
+// Exponential distance fog keeps far cells from shimmering against the sky.
+float fogAmount(vec3 cameraRelative) {
+    return 1.0 - exp(-skyColour.w * length(cameraRelative));
+}
+
+// `fog`: fogAmount, where a pass computes it apart (per vertex, LOD4).
+vec3 shadeFogged(vec3 albedo, vec3 normal, float fog) {
     float diffuse = max(dot(normal, sunDirection.xyz), 0.0);
     vec3 lit = albedo * (sunDirection.w + (1.0 - sunDirection.w) * diffuse * sunColour.rgb);
-    // Exponential distance fog keeps far cells from shimmering against the sky.
-    float fog = 1.0 - exp(-skyColour.w * length(cameraRelative));
     return mix(lit, skyColour.rgb, fog);
+}
+
+vec3 shade(vec3 albedo, vec3 normal, vec3 cameraRelative) {
+    return shadeFogged(albedo, normal, fogAmount(cameraRelative));
 }
 
 // Rotation of v by the unit quaternion q (x, y, z, w).

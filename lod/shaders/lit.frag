@@ -1,13 +1,14 @@
 #version 450 core
-// Shades interpolated albedo and normal: LOD4 meshes, tree geometry and base volumes.
+// Shades LOD4 meshes (tree parts among them): interpolated albedo and normal, and the fog
+// their vertices computed.
 #include "frame.glsl"
 
 in vec3 vNormal;
 in vec3 vAlbedo;
-in vec3 vPosition;
+in float vFog;
 layout(location = 0) out vec4 colour;
 
 void main() {
     vec3 n = normalize(gl_FrontFacing ? vNormal : -vNormal);
-    colour = vec4(shade(vAlbedo, n, vPosition), 1.0);
+    colour = vec4(shadeFogged(vAlbedo, n, vFog), 1.0);
 }
