@@ -111,6 +111,23 @@ bool pageTreesAreBillboards(const CullInputs& inputs, const CullBatchInput& batc
     return true;
 }
 
+enum class PageSkip { None, Outside, FacingAway, Billboards, Occluded };
+
+// Why the pass may leave the page [first, first + count) out whole, if it may: the cheap tests
+// first, the occlusion test (which reads tiles) last.
+PageSkip pageSkip(const CullInputs& inputs, const CullBatchInput& batch, const PageBounds& page,
+                  const glm::vec3& origin, const ShapeRuns& runs, uint32_t first, uint32_t count) {
+    if (!pageMayBeVisible(page, origin, inputs.frame)) return PageSkip::Outside;
+    if (pageFacesAway(page, origin)) return PageSkip::FacingAway;
+    if (pageTreesAreBillboards(inputs, batch, page, runs, first, count)) return PageSkip::Billboards;
+    const glm::vec4& sphere = page.sphere;
+    if (std::isfinite(sphere.w) &&
+        tilesHideSphere(inputs.frame, inputs.occlusionTiles, glm::vec4(glm::vec3(sphere) + origin, sphere.w),
+                        HEXLOD_OCCLUSION_MAX_TILES))
+        return PageSkip::Occluded;
+    return PageSkip::None;
+}
+
 } // namespace
 
 CullPages selectCullPages(const CullInputs& inputs) {
@@ -130,35 +147,20 @@ CullPages selectCullPages(const CullInputs& inputs) {
         ShapeRuns runs(batch.set->countPerShape, records);
         for (uint32_t page = 0, first = 0; first < records; ++page, first += kArenaPageRecords) {
             const uint32_t count = std::min(kArenaPageRecords, records - first);
-            if (batch.pageBounds) {
-                const PageBounds& bounds = (*batch.pageBounds)[page];
-                // The cheap tests first; the occlusion test reads tiles.
-                const bool outside = !pageMayBeVisible(bounds, origin, inputs.frame);
-                const bool facingAway = !outside && pageFacesAway(bounds, origin);
-                const bool billboards = !outside && !facingAway &&
-                                        pageTreesAreBillboards(inputs, batch, bounds, runs, first, count);
-                if (outside || facingAway || billboards) {
-                    out.skippedTerminals += count;
-                    out.facingAwayTerminals += facingAway ? count : 0;
-                    out.billboardTerminals += billboards ? count : 0;
-                    continue;
-                }
-                const glm::vec4& sphere = bounds.sphere;
-                if (std::isfinite(sphere.w) &&
-                    tilesHideSphere(inputs.frame, inputs.occlusionTiles,
-                                    glm::vec4(glm::vec3(sphere) + origin, sphere.w),
-                                    HEXLOD_OCCLUSION_MAX_TILES)) {
-                    out.skippedTerminals += count;
-                    out.occludedTerminals += count;
-                    continue;
-                }
+            const PageBounds* bounds = batch.pageBounds ? &(*batch.pageBounds)[page] : nullptr;
+            const PageSkip skip =
+                bounds ? pageSkip(inputs, batch, *bounds, origin, runs, first, count) : PageSkip::None;
+            if (skip != PageSkip::None) {
+                out.skippedTerminals += count;
+                out.occludedTerminals += skip == PageSkip::Occluded ? count : 0;
+                out.facingAwayTerminals += skip == PageSkip::FacingAway ? count : 0;
+                out.billboardTerminals += skip == PageSkip::Billboards ? count : 0;
+                continue;
             }
             out.pages.emplace_back(b, batch.pages ? (*batch.pages)[page] : first, count, 0u);
             out.terminals += count;
-            const bool lod4 =
-                !batch.pageBounds || pageMayHoldLod4((*batch.pageBounds)[page].sphere, origin, inputs.frame);
-            const bool lod3 =
-                !batch.pageBounds || pageMayHoldLod3((*batch.pageBounds)[page].sphere, origin, inputs.frame);
+            const bool lod4 = !bounds || pageMayHoldLod4(bounds->sphere, origin, inputs.frame);
+            const bool lod3 = !bounds || pageMayHoldLod3(bounds->sphere, origin, inputs.frame);
             for (uint32_t r = first; r < first + count;) {
                 const uint32_t run = runs.from(r, first + count);
                 const uint32_t shape = batch.shapeBase + runs.shape();

@@ -102,16 +102,18 @@ TerminalSet treeSet(std::mt19937& random, uint32_t firstTree, uint32_t count, fl
     return setOf(std::move(records), 3);
 }
 
-// classifyTerminal's backface test alone (a frame whose planes pass everything and that has no
-// LOD distances): whether the record is culled from a batch whose origin minus the camera is
-// `origin`.
-bool backfaceCulled(const TerminalRecord& record, const glm::vec3& origin) {
+// classifyTerminal's decision for a record of a batch whose origin minus the camera is `origin`.
+uint32_t classify(const TerminalRecord& record, const glm::vec3& origin, const shared::CullFrame& frame) {
     gpu::GpuTerminal t;
     std::memcpy(&t, &record, sizeof t);
     float transition;
     glm::vec4 sphere;
-    return shared::classifyTerminal(t, t.position + origin, shared::CullFrame{}, false, transition, sphere) ==
-           HEXLOD_CULLED;
+    return shared::classifyTerminal(t, t.position + origin, frame, false, transition, sphere);
+}
+
+// Its backface test alone: a frame whose planes pass everything and that has no LOD distances.
+bool backfaceCulled(const TerminalRecord& record, const glm::vec3& origin) {
+    return classify(record, origin, shared::CullFrame{}) == HEXLOD_CULLED;
 }
 
 TEST(PageBoundsTest, APageFacesAwayOnlyWhenTheCameraIsBehindEachOfItsWalls) {
@@ -225,15 +227,8 @@ TEST(PageBoundsTest, APageIsOutsideTheFrustumOnlyWhenEachOfItsTerminalsIs) {
         if (pageMayBeVisible(page, origin, frame)) continue;
         ++outside;
         byBoxAlone += pageMayBeVisible(page.sphere, origin, frame);
-        for (const TerminalRecord& record : records) {
-            gpu::GpuTerminal t;
-            std::memcpy(&t, &record, sizeof t);
-            float transition;
-            glm::vec4 sphere;
-            EXPECT_EQ(shared::classifyTerminal(t, t.position + origin, frame, false, transition, sphere),
-                      HEXLOD_CULLED)
-                << "trial " << trial;
-        }
+        for (const TerminalRecord& record : records)
+            EXPECT_EQ(classify(record, origin, frame), HEXLOD_CULLED) << "trial " << trial;
     }
     EXPECT_GT(outside, 1000u);
     EXPECT_GT(byBoxAlone, 100u);

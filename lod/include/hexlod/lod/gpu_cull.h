@@ -44,7 +44,7 @@ public:
 
     const DrawListLayout& layout() const { return layout_; }
     // The last run's terminals culled one by one, and those skipped with their page (of
-    // which `occludedTerminals` behind the occlusion tiles).
+    // which the rest count why: behind the occlusion tiles, facing away, billboard trees).
     struct PageStats {
         uint64_t terminals = 0, skippedTerminals = 0, occludedTerminals = 0, facingAwayTerminals = 0,
                  billboardTerminals = 0;
