@@ -4,9 +4,14 @@
 // square over the impostor's bounding sphere, blending four views (as LOD3) or, beyond LOD2's
 // distance, showing the nearest (as LOD2);
 // smaller on screen than tree_size.glsl's limit, a point instead (tree_point.vert). It is
-// dropped whole when what the frame drew before hides it (depth_tiles.glsl), and its fragments
-// where that hides their tile: the fragment shader writes its depth, so the GL cannot reject
-// hidden fragments before shading them.
+// dropped whole when what the frame drew before hides it (depth_tiles.glsl).
+//
+// TREE_BILLBOARD_FLAT (a define, 0 or 1) picks which of the two forms a program draws, the
+// other's trees dropped here: 0, the blend of four views, whose fragments write the depth of
+// the tree they show, so the GL cannot reject hidden ones before shading them (the fragment
+// shader drops those whose tile hides them); 1, the nearest view, on the billboard's plane
+// through the species' sphere centre, as LOD2 sits on its wall, so that the GL tests each
+// fragment's depth before shading it.
 #include "gpu_types.h"
 #include "cull_shared.h"
 #include "frame.glsl"
@@ -27,7 +32,6 @@ uniform uint allBillboards;
 out vec3 vPosition;
 flat out vec3 vBase;
 flat out uint vSpecies;
-flat out uint vOneView; // beyond LOD2's distance: the nearest view alone, as LOD2 draws facades
 // Window depth of the sphere's nearest point (2: none, so no fragment is dropped).
 flat out float vNearestDepth;
 
@@ -71,7 +75,11 @@ void main() {
         gl_Position = kNoVertex;
         return;
     }
-    vOneView = uint(dot(centre, centre) >= cull.lodDistance.y);
+    // Beyond LOD2's distance the flat form, as LOD2 draws facades; the other program draws it.
+    if (uint(dot(centre, centre) >= cull.lodDistance.y) != uint(TREE_BILLBOARD_FLAT)) {
+        gl_Position = kNoVertex;
+        return;
+    }
     vec3 toCamera = -normalize(centre);
     vec3 up = abs(toCamera.z) > 0.999 ? vec3(0, 1, 0) : vec3(0, 0, 1);
     vec3 right = normalize(cross(up, toCamera));

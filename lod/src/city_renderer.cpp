@@ -455,8 +455,10 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         // after LOD3, they would wait for its rasterisation, which the trees' setup overlaps
         // instead. A billboard that LOD3 hides then fails the depth test pixel by pixel.
         if (!lod3Tiles) depthTiles_.build(target_.depthTexture(), true);
-        depthTiles_.bind(trees_.program(), kDepthTilesUnit, TileTest::TreeBillboards, options_.dropHidden);
-        trees_.program().set("alphaToCoverage", uint32_t(options_.samples > 1));
+        for (const render::ShaderProgram& program : trees_.billboardPrograms()) {
+            depthTiles_.bind(program, kDepthTilesUnit, TileTest::TreeBillboards, options_.dropHidden);
+            program.set("alphaToCoverage", uint32_t(options_.samples > 1));
+        }
         if (options_.samples > 1) gl::glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
         stats.draws += trees_.drawBillboards(trees);
         gl::glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);

@@ -134,11 +134,14 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
     bytes_ += (spheres.size() + boxes.size() + averages.size()) * sizeof(glm::vec4) + textures_.byteSize();
     buildChunks(instances, spheres);
     render::ShaderLibrary library = lodShaderLibrary();
-    program_ = render::ShaderProgram::build(library,
-                                            {{render::ShaderStage::Vertex, "tree_billboard.vert"},
-                                             {render::ShaderStage::Fragment, "tree_billboard.frag"}},
-                                            "", error);
-    if (!program_.valid()) return false;
+    for (uint32_t flat = 0; flat < 2; ++flat) {
+        billboardPrograms_[flat] =
+            render::ShaderProgram::build(library,
+                                         {{render::ShaderStage::Vertex, "tree_billboard.vert"},
+                                          {render::ShaderStage::Fragment, "tree_billboard.frag"}},
+                                         "#define TREE_BILLBOARD_FLAT " + std::to_string(flat) + "\n", error);
+        if (!billboardPrograms_[flat].valid()) return false;
+    }
     pointProgram_ = render::ShaderProgram::build(library,
                                                  {{render::ShaderStage::Vertex, "tree_point.vert"},
                                                   {render::ShaderStage::Fragment, "tree_point.frag"}},
@@ -192,7 +195,8 @@ void TreePass::Ranges::add(uint32_t first, uint32_t count) {
 
 std::pair<uint32_t, uint32_t> TreePass::prepare(const std::vector<std::pair<uint32_t, bool>>& batches,
                                                 const TreeFrame& frame) {
-    for (Ranges* ranges : {billboardRanges_, pointRanges_}) ranges[0].clear(), ranges[1].clear();
+    for (Ranges* ranges : {billboardRanges_[0], billboardRanges_[1], pointRanges_})
+        ranges[0].clear(), ranges[1].clear();
     if (!vao_) return {0, 0};
     const shared::CullFrame& cull = *frame.cull;
     // cull.trees: x, the squared distance from which a tree is far (< 0: never); yzw, the
@@ -221,8 +225,15 @@ std::pair<uint32_t, uint32_t> TreePass::prepare(const std::vector<std::pair<uint
                 2.0f * chunk.maxRadius * frame.screenScale >= 0.99f * frame.pointDiameter * nearest;
             const bool anyPoint =
                 2.0f * chunk.minRadius * frame.screenScale < 1.01f * frame.pointDiameter * farthest;
-            if (anyBillboard)
-                billboardRanges_[allFar].add(chunk.first, chunk.count), billboards += chunk.count;
+            if (anyBillboard) {
+                // tree_billboard.vert's form per tree, by its sphere's centre: here with a margin.
+                const float flatFrom = cull.lodDistance.y;
+                if (nearest * nearest < 1.01f * flatFrom)
+                    billboardRanges_[0][allFar].add(chunk.first, chunk.count);
+                if (farthest * farthest >= 0.99f * flatFrom)
+                    billboardRanges_[1][allFar].add(chunk.first, chunk.count);
+                billboards += chunk.count;
+            }
             if (anyPoint) pointRanges_[allFar].add(chunk.first, chunk.count), points += chunk.count;
         }
     }
@@ -272,7 +283,9 @@ uint32_t TreePass::drawRanges(const render::ShaderProgram& program, const TreeFr
 }
 
 uint32_t TreePass::drawBillboards(const TreeFrame& frame) {
-    return drawRanges(program_, frame, billboardRanges_, false);
+    // The blended form first: the flat form's fragments behind it are then rejected unshaded.
+    return drawRanges(billboardPrograms_[0], frame, billboardRanges_[0], false) +
+           drawRanges(billboardPrograms_[1], frame, billboardRanges_[1], false);
 }
 
 uint32_t TreePass::drawPoints(const TreeFrame& frame) {

@@ -2,7 +2,9 @@
 // position and species, which the cull pass also reads to drop the terminals of billboard
 // trees), pulled per tree batch by vertex id (pulled_quad.glsl); each billboard faces the
 // camera and ray-casts its species' full-sphere impostor, so it shows the right view from any
-// direction, from above included, and writes the depth of the tree it shows. It covers the
+// direction, from above included. Within LOD2's distance it blends four views and writes the
+// depth of the tree it shows; beyond, it shows the nearest view flat on its plane, so that the
+// GL rejects its hidden fragments before shading them (tree_billboard.vert). It covers the
 // screen rectangle of its species' box (the tree's own bounds), within its sphere's square.
 // A tree too small on screen for its billboard to show more than an average colour is a
 // point instead (tree_size.glsl, tree_view_averages.h). A batch's trees lie in chunks of neighbours, each
@@ -56,14 +58,15 @@ public:
     // left out. Returns the trees submitted to the billboard pass and to the point pass.
     std::pair<uint32_t, uint32_t> prepare(const std::vector<std::pair<uint32_t, bool>>& batches,
                                           const TreeFrame& frame);
-    // Draws what prepare() chose: billboards with program(), whose depth tiles and coverage the
-    // caller has set, then points. Returns the draws made.
+    // Draws what prepare() chose: billboards with billboardPrograms(), whose depth tiles and
+    // coverage the caller has set, then points. Returns the draws made.
     uint32_t drawBillboards(const TreeFrame& frame);
     uint32_t drawPoints(const TreeFrame& frame);
     // GPU bytes: trees, billboards, species impostors
     uint64_t byteSize() const { return bytes_ + quads_.byteSize(); }
     bool hasImpostors() const { return textures_.layers() > 0; }
-    const render::ShaderProgram& program() const { return program_; }
+    // The billboards' two forms (tree_billboard.vert): blended with their own depth, and flat.
+    const render::ShaderProgram (&billboardPrograms() const)[2] { return billboardPrograms_; }
 
 private:
     // Up to kTreeChunk neighbouring trees of one batch, relative to origin_.
@@ -90,10 +93,11 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> ranges_;      // per catalog batch: first billboard, count
     std::vector<std::pair<uint32_t, uint32_t>> chunkRanges_; // per catalog batch: first chunk, count
     std::vector<Chunk> chunks_;
-    Ranges billboardRanges_[2], pointRanges_[2]; // prepare()'s choice, reused frame to frame
+    // prepare()'s choice, reused frame to frame; billboards by form, then as Ranges says.
+    Ranges billboardRanges_[2][2], pointRanges_[2];
     glm::dvec3 origin_{0.0};
     impostor::ImpostorTextures textures_;
-    render::ShaderProgram program_, pointProgram_;
+    render::ShaderProgram billboardPrograms_[2], pointProgram_;
     uint32_t byId_ = 0, instances_ = 0, spheres_ = 0, boxes_ = 0, viewAverages_ = 0, vao_ = 0;
     uint64_t bytes_ = 0;
     QuadIndices quads_; // the billboards' index buffer
