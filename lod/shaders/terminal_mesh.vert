@@ -9,16 +9,13 @@
 #include "frame.glsl"
 
 layout(location = HEXLOD_ATTRIBUTE_POSITION) in vec3 unitPosition;
-layout(location = HEXLOD_ATTRIBUTE_NORMAL) in vec3 storedNormal;
+layout(location = HEXLOD_ATTRIBUTE_NORMAL) in vec3 unitNormal; // unit scope space (ShapeTable)
 layout(location = HEXLOD_ATTRIBUTE_COLOR) in vec4 albedo;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_POSITION) in vec3 corner;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_BUILDING) in float transition;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION) in vec4 orientation;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_SIZE) in vec2 size;
-layout(location = HEXLOD_ATTRIBUTE_INSTANCE_SHAPE) in uint shape;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_DEPTH) in float depthRatio;
-
-layout(std430, binding = 8) readonly buffer ShapeBuffer { GpuShape shapes[]; };
 
 out vec3 vNormal;
 out vec3 vAlbedo;
@@ -33,7 +30,10 @@ void main() {
     vec3 position = corner + axisX * (unitPosition.x * size.x) + axisY * (unitPosition.y * size.y) +
                     axisZ * (unitPosition.z * depth);
     gl_Position = viewProjection * vec4(position, 1.0);
-    vec3 n = scopeNormal(storedNormal, shapes[shape].nominalSize.xyz, vec3(size, depth));
+    // The inverse transpose of diag(size, depth); an axis flattened to nothing (depth at the
+    // end of the LOD3 transition) is 1e-4 m, so that it dominates, as in scopeNormal.
+    vec3 n = unitNormal / max(vec3(size, depth), vec3(1e-4));
+    n = length(n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
     vNormal = mat3(axisX, axisY, axisZ) * n;
     vAlbedo = albedo.rgb;
     vFog = fogAmount(position);

@@ -536,7 +536,6 @@ void CityRenderer::countCulledTerminals(FrameStats& stats) {
 void CityRenderer::drawTerminalMeshes(PassTimer& timer) {
     const uint32_t shapes = cull_.shapeCount();
     if (shapes == 0) return;
-    gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, shapes_.shapeBuffer());
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, cull_.commandBuffer());
     gl::glBindVertexArray(lod4Vao_);
     gl::glVertexArrayVertexBuffer(lod4Vao_, 1, cull_.listBuffer(), 0, sizeof(gpu::GpuTerminal));

@@ -19,7 +19,13 @@ void ShapeTable::upload(const render::TerminalMeshLibrary& library, std::span<co
         auto [it, inserted] = placed.try_emplace(&mesh);
         if (inserted) {
             it->second = {uint32_t(mesh.indices.size()), uint32_t(indices.size()), int32_t(vertices.size())};
-            vertices.insert(vertices.end(), mesh.vertices.begin(), mesh.vertices.end());
+            // Normals in unit scope space: the LOD4 vertex shader carries them to a terminal's
+            // scope with one division, where a stored normal would need the shape's nominal
+            // size, a buffer read per vertex (terminal_mesh.vert).
+            for (render::MeshVertex v : mesh.vertices) {
+                v.normal = render::unitSpaceNormal(v.normal, mesh.nominalSize);
+                vertices.push_back(v);
+            }
             indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
         }
         draws_.push_back(it->second);

@@ -1,6 +1,7 @@
 // Every terminal shape of a scene on the GPU, under one global index (shapeBase of its grammar
-// + its shape id): the meshes of the mesh library in one vertex and one index buffer, and per
-// shape what the draw passes need (nominal size, mesh bounds, impostor layer).
+// + its shape id): the meshes of the mesh library in one vertex and one index buffer (normals
+// in unit scope space, render::unitSpaceNormal), and per shape what the draw passes need
+// (nominal size, mesh bounds, impostor layer).
 #pragma once
 
 #include "hexlod/lod/gpu_cull.h"
