@@ -44,23 +44,17 @@ void setTerminalInstanceFormat(uint32_t vao, uint32_t binding) {
         GLuint location;
         GLint components;
         GLenum type;
-        bool integer;
         GLuint offset;
     } attributes[] = {
-        {HEXLOD_ATTRIBUTE_INSTANCE_POSITION, 3, GL_FLOAT, false, 0},
-        {HEXLOD_ATTRIBUTE_INSTANCE_BUILDING, 1, GL_FLOAT, false, 12}, // the transition factor in draw lists
-        {HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION, 4, GL_SHORT, false, 16},
-        {HEXLOD_ATTRIBUTE_INSTANCE_SIZE, 2, GL_HALF_FLOAT, false, 24},
-        {HEXLOD_ATTRIBUTE_INSTANCE_SHAPE, 1, GL_UNSIGNED_SHORT, true, 28},
-        {HEXLOD_ATTRIBUTE_INSTANCE_DEPTH, 1, GL_HALF_FLOAT, false, 30},
+        {HEXLOD_ATTRIBUTE_INSTANCE_POSITION, 3, GL_FLOAT, 0},
+        {HEXLOD_ATTRIBUTE_INSTANCE_BUILDING, 1, GL_FLOAT, 12}, // the transition factor in draw lists
+        {HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION, 4, GL_SHORT, 16},
+        {HEXLOD_ATTRIBUTE_INSTANCE_SIZE, 2, GL_HALF_FLOAT, 24},
+        {HEXLOD_ATTRIBUTE_INSTANCE_DEPTH, 1, GL_HALF_FLOAT, 30}, // after the shape, which LOD4 needs not
     };
     for (const auto& a : attributes) {
         gl::glEnableVertexArrayAttrib(vao, a.location);
-        if (a.integer)
-            gl::glVertexArrayAttribIFormat(vao, a.location, a.components, a.type, a.offset);
-        else
-            gl::glVertexArrayAttribFormat(vao, a.location, a.components, a.type, a.type == GL_SHORT,
-                                          a.offset);
+        gl::glVertexArrayAttribFormat(vao, a.location, a.components, a.type, a.type == GL_SHORT, a.offset);
         gl::glVertexArrayAttribBinding(vao, a.location, binding);
     }
     gl::glVertexArrayBindingDivisor(vao, binding, 1);
