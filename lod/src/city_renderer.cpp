@@ -153,11 +153,15 @@ bool CityRenderer::init(std::string& error) {
         {{render::ShaderStage::Vertex, "terminal_mesh.vert"}, {render::ShaderStage::Fragment, "lit.frag"}},
         "", error);
     if (!programs_->lod4.valid()) return false;
-    programs_->volume = render::ShaderProgram::build(
-        library,
-        {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "volume.frag"}}, "",
-        error);
-    if (!programs_->volume.valid()) return false;
+    for (render::ShaderProgram* volume : {&programs_->volume, &programs_->texturedVolume}) {
+        *volume = render::ShaderProgram::build(
+            library,
+            {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "volume.frag"}},
+            volume == &programs_->volume ? "#define VOLUME_WALL_TEXTURE 0\n"
+                                         : "#define VOLUME_WALL_TEXTURE 1\n",
+            error);
+        if (!volume->valid()) return false;
+    }
 
     // The reference draws every terminal's full mesh; only the LOD system may draw a coarser one.
     const std::vector<CoarseMesh> coarse =

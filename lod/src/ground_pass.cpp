@@ -75,7 +75,6 @@ void GroundPass::upload(std::span<const scene::RoadSegment> roads, const glm::dv
 
 uint64_t GroundPass::draw(const render::ShaderProgram& program, const glm::dvec3& camera) const {
     program.use();
-    program.set("texturedWalls", 0u);
     // The plane follows the camera in x and y, so it never ends where the camera can see.
     program.set("cellOffset", glm::vec3(0.0f, 0.0f, float(origin_.z - camera.z)));
     gl::glBindVertexArray(groundVao_);

@@ -105,12 +105,13 @@ void CityRenderer::drawRuns(const VolumeDraw& draw, FrameStats& stats) {
 
 void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
                                FrameStats& stats, PassTimer& timer) {
-    // LOD0 first with one program, then LOD1 grammar by grammar.
-    programs_->volume.use();
+    // LOD0 first, plain or textured, then LOD1 grammar by grammar.
+    const render::ShaderProgram* bound = nullptr;
     for (const VolumeDraw& draw : volumes) {
         if (draw.mesh->indexCount == 0 || draw.runs.empty() || draw.lod0Blend < 1.0f) continue;
-        programs_->volume.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
-        programs_->volume.set("texturedWalls", uint32_t(draw.textured));
+        const render::ShaderProgram& program = draw.textured ? programs_->texturedVolume : programs_->volume;
+        if (bound != &program) program.use(), bound = &program;
+        program.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
         drawRuns(draw, stats);
     }
     timer.end(DrawPass::Lod0);

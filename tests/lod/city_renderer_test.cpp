@@ -1,11 +1,11 @@
 // The whole frame on llvmpipe: every mode renders a small city, the LOD system costs less than
-// everything at LOD4 and stays close to it, multisampling antialiases, tree billboards cover
-// what their trees cover with and without it and shade only their species' box, billboards
-// beyond LOD2's distance are flat and show the same trees, trees a pixel across are points
-// that cover as much, the profile's tree error places the cut, far tree
-// parts draw coarser meshes, hidden billboards and LOD3 impostors are dropped without changing
-// a pixel, a city 1e7 m out renders as at the origin, odd cameras render without error, and
-// golden images hold each mode's look.
+// everything at LOD4 and stays close to it, LOD0's walls show bays where LOD4 shows windows,
+// multisampling antialiases, tree billboards cover what their trees cover with and without it and
+// shade only their species' box, billboards beyond LOD2's distance are flat and show the same
+// trees, trees a pixel across are points that cover as much, the profile's tree error places the
+// cut, far tree parts draw coarser meshes, hidden billboards and LOD3 impostors are dropped without
+// changing a pixel, a city 1e7 m out renders as at the origin, odd cameras render without error,
+// and golden images hold each mode's look.
 #include "../render/gl_fixture.h"
 #include "test_city.h"
 
@@ -164,6 +164,32 @@ TEST_F(CityRendererTest, MultisamplingAntialiasesTheFrame) {
     std::printf("4 samples against 1: %.1f dB\n", psnr);
     EXPECT_LT(psnr, 50.0) << "four samples per pixel rendered what one does";
     EXPECT_GT(psnr, 20.0);
+}
+
+TEST_F(CityRendererTest, Lod0WallsShowStoreysAndBaysWhereTheirTerminalsWouldBe) {
+    // At street level, buildings only: LOD0's wall texture draws window bays where LOD4 draws
+    // windows, so that the walls break up into about as many edges; walls without it (the
+    // shells under terminal sets, the ground's program) would show a face's one colour.
+    testing::TestCity city = testing::makeCity(30, 0);
+    const SceneImpostors impostors = bake(city);
+    const scene::CameraPose pose = lookAt({-60, -70, 3}, {0, 0, 12});
+    // Pixels whose colour differs from their left neighbour's by more than a few levels.
+    const auto edges = [](const render::Image& image) {
+        size_t count = 0;
+        for (uint32_t y = 0; y < image.height; ++y)
+            for (uint32_t x = 1; x < image.width; ++x)
+                for (int c = 0; c < 3; ++c)
+                    if (std::abs(image.at(x, y)[c] - image.at(x - 1, y)[c]) > 0.03f) {
+                        ++count;
+                        break;
+                    }
+        return count;
+    };
+    const size_t lod4 = edges(render(city, impostors, RenderMode::AllLod4, pose).image);
+    const size_t lod0 = edges(render(city, impostors, RenderMode::AllLod0, pose).image);
+    std::printf("edges: %zu at LOD4, %zu at LOD0\n", lod4, lod0);
+    EXPECT_GT(lod4, 500u);
+    EXPECT_GT(lod0, lod4 / 2);
 }
 
 TEST_F(CityRendererTest, MultisampledTreeBillboardsCoverWhatTheirTreesCover) {
