@@ -16,6 +16,7 @@ out vec3 vAlbedo;
 out vec3 vPosition;
 out vec3 vLocal;
 flat out float vElement; // a wall's extruded-set element (render/base_volume_mesh.h), -1 elsewhere
+out vec3 vShaded;         // lit and fogged here, for the plain walls shaded per vertex (volume.frag)
 
 void main() {
     vPosition = cellOffset + localPosition;
@@ -24,4 +25,5 @@ void main() {
     vAlbedo = albedo.rgb;
     vLocal = localPosition;
     vElement = uv.y > 0.0 ? uv.x : -1.0;
+    vShaded = shade(albedo.rgb, normalize(normal), vPosition);
 }

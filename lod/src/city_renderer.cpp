@@ -153,13 +153,14 @@ bool CityRenderer::init(std::string& error) {
         {{render::ShaderStage::Vertex, "terminal_mesh.vert"}, {render::ShaderStage::Fragment, "lit.frag"}},
         "", error);
     if (!programs_->lod4.valid()) return false;
-    for (render::ShaderProgram* volume : {&programs_->volume, &programs_->texturedVolume}) {
+    // volume.frag's VOLUME_SHADING.
+    const std::pair<render::ShaderProgram*, const char*> volumes[] = {
+        {&programs_->volume, "0"}, {&programs_->ground, "1"}, {&programs_->texturedVolume, "2"}};
+    for (const auto& [volume, shading] : volumes) {
         *volume = render::ShaderProgram::build(
             library,
             {{render::ShaderStage::Vertex, "volume.vert"}, {render::ShaderStage::Fragment, "volume.frag"}},
-            volume == &programs_->volume ? "#define VOLUME_WALL_TEXTURE 0\n"
-                                         : "#define VOLUME_WALL_TEXTURE 1\n",
-            error);
+            std::string("#define VOLUME_SHADING ") + shading + "\n", error);
         if (!volume->valid()) return false;
     }
 
@@ -397,7 +398,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     PassTimer timer(options_.passClock, stats.passMs);
     if (depthTiles_.valid()) depthTiles_.clearCounts();
     drawVolumeRings(volumes, pose, nearPlane, farPlane, stats, timer);
-    stats.triangles += ground_.draw(programs_->volume, pose.position);
+    stats.triangles += ground_.draw(programs_->ground, pose.position);
     stats.draws += 2;
     timer.end(DrawPass::Ground);
     stats.drawMs = millisecondsSince(stageStart);

@@ -11,8 +11,9 @@ namespace hexlod::lod {
 
 struct CityRenderer::Programs {
     render::ShaderProgram lod4, impostor, impostorWall; // impostor: LOD3 ray-cast; impostorWall: LOD2
-    render::ShaderProgram volume, texturedVolume;       // base volumes plain (and the ground), LOD0's
-    std::map<uint32_t, render::ShaderProgram> lod1;     // per building grammar with buildings
+    // Base volumes: plain (the shells under terminal sets), textured (LOD0); the ground.
+    render::ShaderProgram volume, texturedVolume, ground;
+    std::map<uint32_t, render::ShaderProgram> lod1; // per building grammar with buildings
 };
 
 } // namespace hexlod::lod

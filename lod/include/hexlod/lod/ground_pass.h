@@ -21,8 +21,8 @@ public:
 
     // Street quads relative to `origin` (any point near the city; precision is relative to it).
     void upload(std::span<const scene::RoadSegment> roads, const glm::dvec3& origin);
-    // Draws with `program` (volume.vert/volume.frag without the wall texture: per-vertex colour,
-    // offset by cellOffset).
+    // Draws with `program` (volume.vert/volume.frag shaded per pixel, VOLUME_SHADING 1: the
+    // plane is one rectangle out to the fog; offset by cellOffset).
     // Returns the triangles drawn.
     uint64_t draw(const render::ShaderProgram& program, const glm::dvec3& camera) const;
     uint64_t byteSize() const { return bytes_; }
