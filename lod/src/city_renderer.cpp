@@ -50,7 +50,7 @@ void setTerminalInstanceFormat(uint32_t vao, uint32_t binding) {
         {HEXLOD_ATTRIBUTE_INSTANCE_BUILDING, 1, GL_FLOAT, 12}, // the transition factor in draw lists
         {HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION, 4, GL_SHORT, 16},
         {HEXLOD_ATTRIBUTE_INSTANCE_SIZE, 2, GL_HALF_FLOAT, 24},
-        {HEXLOD_ATTRIBUTE_INSTANCE_DEPTH, 1, GL_HALF_FLOAT, 30}, // after the shape, which LOD4 needs not
+        {HEXLOD_ATTRIBUTE_INSTANCE_DEPTH, 1, GL_HALF_FLOAT, 30}, // 28 holds the shape, which no shader reads
     };
     for (const auto& a : attributes) {
         gl::glEnableVertexArrayAttrib(vao, a.location);
