@@ -202,6 +202,8 @@ std::pair<uint32_t, uint32_t> TreePass::prepare(const std::vector<std::pair<uint
     // cull.trees: x, the squared distance from which a tree is far (< 0: never); yzw, the
     // trees' origin minus the camera.
     const float cut = cull.trees.x;
+    // tree_billboard.vert's form per tree, by its sphere's centre: flat from this squared distance.
+    const float flatFrom = cull.lodDistance.y;
     const glm::vec3 offset(cull.trees.y, cull.trees.z, cull.trees.w);
     uint32_t billboards = 0, points = 0;
     for (const auto& [batch, allFar] : batches) {
@@ -226,8 +228,7 @@ std::pair<uint32_t, uint32_t> TreePass::prepare(const std::vector<std::pair<uint
             const bool anyPoint =
                 2.0f * chunk.minRadius * frame.screenScale < 1.01f * frame.pointDiameter * farthest;
             if (anyBillboard) {
-                // tree_billboard.vert's form per tree, by its sphere's centre: here with a margin.
-                const float flatFrom = cull.lodDistance.y;
+                // Each form that may hold one of the chunk's trees, with a margin.
                 if (nearest * nearest < 1.01f * flatFrom)
                     billboardRanges_[0][allFar].add(chunk.first, chunk.count);
                 if (farthest * farthest >= 0.99f * flatFrom)

@@ -22,6 +22,7 @@
 
 #include <glm/vec4.hpp>
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -66,7 +67,7 @@ public:
     uint64_t byteSize() const { return bytes_ + quads_.byteSize(); }
     bool hasImpostors() const { return textures_.layers() > 0; }
     // The billboards' two forms (tree_billboard.vert): blended with their own depth, and flat.
-    const render::ShaderProgram (&billboardPrograms() const)[2] { return billboardPrograms_; }
+    std::span<const render::ShaderProgram, 2> billboardPrograms() const { return billboardPrograms_; }
 
 private:
     // Up to kTreeChunk neighbouring trees of one batch, relative to origin_.
