@@ -47,7 +47,7 @@ void main() {
     precise vec3 corner = t.position + batch.origin;
     float transition;
     vec4 sphere;
-    uint lod = classifyTerminal(t, corner, frame, info.z != 0u, transition, sphere);
+    uint lod = classifyTerminal(t, corner, frame, info.z != 0u, info.w == 0u, transition, sphere);
     if (lod == HEXLOD_CULLED) return;
     if (hiddenByTiles(sphere)) {
         atomicAdd(occludedTerminals, 1u);

@@ -20,8 +20,8 @@ CullResult cullOnCpu(const CullInputs& inputs) {
             gpu::GpuTerminal t;
             std::memcpy(&t, &record, sizeof t);
             const uint32_t shape = batch.shapeBase + (t.shapeAndDepth & 0xffffu);
-            if (!inputs.shapeTree.empty() && inputs.shapeTree[shape] &&
-                shared::treeIsBillboard(glm::vec3((*inputs.trees)[t.building]), inputs.frame)) {
+            const bool treePart = !inputs.shapeTree.empty() && inputs.shapeTree[shape];
+            if (treePart && shared::treeIsBillboard(glm::vec3((*inputs.trees)[t.building]), inputs.frame)) {
                 ++result.culled;
                 continue;
             }
@@ -29,7 +29,7 @@ CullResult cullOnCpu(const CullInputs& inputs) {
             float transition = 0.0f;
             glm::vec4 sphere;
             const uint32_t lod = shared::classifyTerminal(
-                t, corner, inputs.frame, inputs.shapeImpostor[shape] != 0, transition, sphere);
+                t, corner, inputs.frame, inputs.shapeImpostor[shape] != 0, !treePart, transition, sphere);
             if (lod == HEXLOD_CULLED) {
                 ++result.culled;
                 continue;

@@ -118,7 +118,9 @@ enum class PageSkip { None, Outside, FacingAway, Billboards, Occluded };
 PageSkip pageSkip(const CullInputs& inputs, const CullBatchInput& batch, const PageBounds& page,
                   const glm::vec3& origin, const ShapeRuns& runs, uint32_t first, uint32_t count) {
     if (!pageMayBeVisible(page, origin, inputs.frame)) return PageSkip::Outside;
-    if (pageFacesAway(page, origin)) return PageSkip::FacingAway;
+    // A tree's parts stand free: no wall hides them from behind.
+    const bool trees = batch.shapeBase < inputs.shapeTree.size() && inputs.shapeTree[batch.shapeBase];
+    if (!trees && pageFacesAway(page, origin)) return PageSkip::FacingAway;
     if (pageTreesAreBillboards(inputs, batch, page, runs, first, count)) return PageSkip::Billboards;
     const glm::vec4& sphere = page.sphere;
     if (std::isfinite(sphere.w) &&

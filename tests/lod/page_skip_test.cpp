@@ -1,5 +1,6 @@
 // Pages of terminals skipped whole before the GPU pass reads them: facing away from the camera
-// (their walls' planes) or holding only parts of trees drawn as billboards. A skipped page must
+// (their walls' planes; never a tree's parts, which no wall hides) or holding only parts of
+// trees drawn as billboards. A skipped page must
 // hold nothing the pass would have drawn, so the tests hold the page tests to the terminal
 // tests they stand in for, and the GPU pass with skipping to the CPU reference without.
 #include "../render/gl_fixture.h"
@@ -108,7 +109,7 @@ uint32_t classify(const TerminalRecord& record, const glm::vec3& origin, const s
     std::memcpy(&t, &record, sizeof t);
     float transition;
     glm::vec4 sphere;
-    return shared::classifyTerminal(t, t.position + origin, frame, false, transition, sphere);
+    return shared::classifyTerminal(t, t.position + origin, frame, false, true, transition, sphere);
 }
 
 // Its backface test alone: a frame whose planes pass everything and that has no LOD distances.
@@ -232,6 +233,37 @@ TEST(PageBoundsTest, APageIsOutsideTheFrustumOnlyWhenEachOfItsTerminalsIs) {
     }
     EXPECT_GT(outside, 1000u);
     EXPECT_GT(byBoxAlone, 100u);
+}
+
+// The parts of a tree stand free: from behind the plane a part recedes to, its other side
+// shows (a leaf's back, a branch's far side), where a wall would hide a facade's. The same
+// page of parts facing one way, seen from behind, as a building's and as a tree's.
+TEST(PageBoundsTest, PartsOfTreesAreNotCulledForFacingAwayAsAWallsAre) {
+    std::vector<TerminalRecord> records;
+    std::vector<glm::vec4> trees = {{0, 0, 0, 0}};
+    for (uint32_t i = 0; i < 64; ++i)
+        records.push_back(wallPart(glm::vec2(0.0f), 4.0f, 0, float(i % 8) / 8.0f, 2.0f + float(i / 8) * 0.5f,
+                                   glm::vec2(0.4f), 0.3f, 0, 0));
+    const TerminalSet set = setOf(records, 1);
+    const std::vector<PageBounds> bounds = pageBounds(set);
+    ASSERT_EQ(bounds[0].faceCount, 1u);
+    CullInputs inputs;
+    inputs.shapeCount = 1;
+    inputs.shapeImpostor = {0};
+    inputs.trees = &trees;
+    inputs.camera = glm::dvec3(0.0, 10.0, 3.0); // behind the parts, which face -y
+    inputs.batches.push_back({&set, nullptr, glm::dvec3(0.0), 0, &bounds});
+    const cells::Frustum frustum(inputs.camera, glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1), 1.0, 1.5, 0.1,
+                                 5000.0);
+    inputs.frame = makeCullFrame(frustum, scene::LodProfile{}, 1.0, 720, 0.2, false);
+    for (uint8_t tree : {0, 1}) {
+        inputs.shapeTree = {tree};
+        const CullPages pages = selectCullPages(inputs);
+        EXPECT_EQ(pages.facingAwayTerminals, tree ? 0u : 64u);
+        const CullResult culled = cullOnCpu(inputs);
+        EXPECT_EQ(culled.terminalsPerLod[HEXLOD_LOD4], tree ? 64u : 0u);
+        EXPECT_EQ(culled.culled, tree ? 0u : 64u);
+    }
 }
 
 // selectCullPages over one tree batch: leaves a page per tree (trees 0 to 2), then the trunks

@@ -142,10 +142,11 @@ HEXLOD_FN bool treeIsBillboard(vec3 treePosition, CullFrame frame) {
 }
 
 // Frustum, backface and LOD for one terminal whose corner lies at `corner` relative to the
-// camera; `impostors` says whether its shape has an impostor to fall back on. `transition` is
+// camera; `impostors` says whether its shape has an impostor to fall back on, `onWall` whether
+// it sits on a facade (a tree part does not: it is seen from every side). `transition` is
 // the LOD4 -> LOD3 or LOD3 -> LOD2 blend in [0, 1] (0: this LOD fully), for the draw passes;
 // `sphere` the camera-relative sphere it was culled with, for the occlusion test.
-HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, bool impostors,
+HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, bool impostors, bool onWall,
                                 HEXLOD_OUT(float) transition, HEXLOD_OUT(vec4) sphere) {
     transition = 0.0f;
     vec3 axisX, axisY, axisZ;
@@ -162,9 +163,10 @@ HEXLOD_FN uint classifyTerminal(GpuTerminal t, vec3 corner, CullFrame frame, boo
         if (distance < -radius) return HEXLOD_CULLED;
     }
     // Backface: the camera (at the origin) behind the plane the shape recedes to sees none of
-    // its front; its protrusion keeps it visible from a little behind the wall plane itself.
+    // its front, the wall hiding the rest; its protrusion keeps it visible from a little behind
+    // the wall plane itself.
     HEXLOD_PRECISE float inFront = -dot3(axisZ, corner);
-    if (inFront < -depth) return HEXLOD_CULLED;
+    if (onWall && inFront < -depth) return HEXLOD_CULLED;
     if (!impostors || frame.lodDistance.w == 0.0f) return HEXLOD_LOD4;
     HEXLOD_PRECISE float distanceSquared = dot3(centre, centre);
     uint lod = distanceSquared >= frame.lodDistance.y   ? HEXLOD_LOD2
