@@ -1,6 +1,7 @@
 #version 450 core
 // Shades LOD4 meshes (tree parts among them): interpolated albedo and normal, and the fog
-// their vertices computed.
+// their vertices computed. A back face shows only where a mesh is drawn two-sided (its
+// vertices chose the back's albedo), lit by the other side of the normal.
 #include "frame.glsl"
 
 in vec3 vNormal;

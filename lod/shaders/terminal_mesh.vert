@@ -4,13 +4,17 @@
 // on llvmpipe). In the last part of its range a terminal flattens toward its wall, so that the
 // switch to its impostor (LOD3) does not pop its depth. Fog is computed per vertex: across a
 // triangle it changes by far less than one 8-bit level, and per fragment it cost about 5 % of
-// the pass (the LOD4 pass is bound by setup, then by the fragments it shades).
+// the pass (the LOD4 pass is bound by setup, then by the fragments it shades). A two-sided
+// mesh's triangle (lod/shape_geometry.h) shows the colour of the side the camera sees: its
+// vertex normals are its face's, so the sign of the normal against the view ray at a vertex is
+// the triangle's facing, as the rasteriser finds it.
 #include "gpu_types.h"
 #include "frame.glsl"
 
 layout(location = HEXLOD_ATTRIBUTE_POSITION) in vec3 unitPosition;
 layout(location = HEXLOD_ATTRIBUTE_NORMAL) in vec3 unitNormal; // unit scope space (ShapeTable)
 layout(location = HEXLOD_ATTRIBUTE_COLOR) in vec4 albedo;
+layout(location = HEXLOD_ATTRIBUTE_BACK_COLOR) in vec4 backAlbedo;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_POSITION) in vec3 corner;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_BUILDING) in float transition;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION) in vec4 orientation;
@@ -35,6 +39,6 @@ void main() {
     vec3 n = unitNormal / max(vec3(size, depth), vec3(1e-4));
     n = length(n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
     vNormal = mat3(axisX, axisY, axisZ) * n;
-    vAlbedo = albedo.rgb;
+    vAlbedo = dot(vNormal, position) > 0.0 ? backAlbedo.rgb : albedo.rgb;
     vFog = fogAmount(position);
 }

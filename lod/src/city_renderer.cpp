@@ -5,7 +5,6 @@
 #include "hexlod/lod/lod1_codegen.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/gpu_types.h"
-#include "hexlod/render/mesh_vertex_format.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -233,9 +232,7 @@ bool CityRenderer::init(std::string& error) {
     gl::glCreateBuffers(1, &frameBuffer_);
     gl::glNamedBufferStorage(frameBuffer_, sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
     gl::glCreateVertexArrays(1, &lod4Vao_);
-    gl::glVertexArrayVertexBuffer(lod4Vao_, 0, shapes_.vertexBuffer(), 0, sizeof(render::MeshVertex));
-    gl::glVertexArrayElementBuffer(lod4Vao_, shapes_.indexBuffer());
-    render::setMeshVertexFormat(lod4Vao_, 0);
+    shapes_.bindVertices(lod4Vao_, 0);
     setTerminalInstanceFormat(lod4Vao_, 1);
     gl::glCreateVertexArrays(1, &impostorVao_); // attribute-less: impostors pull their entries
     return true;
@@ -539,7 +536,13 @@ void CityRenderer::drawTerminalMeshes(PassTimer& timer) {
     gl::glBindVertexArray(lod4Vao_);
     gl::glVertexArrayVertexBuffer(lod4Vao_, 1, cull_.listBuffer(), 0, sizeof(gpu::GpuTerminal));
     programs_->lod4.use();
-    gl::glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT, nullptr, GLsizei(shapes), kCommandStride);
+    for (const SidedRun& run : shapes_.sidedRuns()) {
+        if (run.twoSided) gl::glDisable(GL_CULL_FACE);
+        gl::glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                        reinterpret_cast<const void*>(uintptr_t(run.first) * kCommandStride),
+                                        GLsizei(run.count), kCommandStride);
+        if (run.twoSided) gl::glEnable(GL_CULL_FACE);
+    }
     gl::glBindVertexArray(0);
     gl::glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     timer.end(DrawPass::TerminalMeshes);

@@ -1,6 +1,9 @@
 // One vertex and index buffer for all terminal meshes, each distinct mesh uploaded once.
 #include "hexlod/lod/shape_table.h"
 #include "hexlod/render/gl_api.h"
+#include "hexlod/render/gpu_types.h"
+
+#include <cstddef>
 
 #include <map>
 
@@ -12,23 +15,24 @@ ShapeTable::~ShapeTable() {
 }
 
 void ShapeTable::upload(const render::TerminalMeshLibrary& library, std::span<const CoarseMesh> coarse) {
-    std::vector<render::MeshVertex> vertices;
+    std::vector<ShapeVertex> vertices;
     std::vector<uint32_t> indices;
-    std::map<const render::TerminalMesh*, MeshDrawInfo> placed;
+    std::map<const render::TerminalMesh*, std::pair<MeshDrawInfo, bool>> placed; // and two-sided
     const auto add = [&](const render::TerminalMesh& mesh) {
         auto [it, inserted] = placed.try_emplace(&mesh);
         if (inserted) {
-            it->second = {uint32_t(mesh.indices.size()), uint32_t(indices.size()), int32_t(vertices.size())};
-            // Normals in unit scope space: the LOD4 vertex shader carries them to a terminal's
-            // scope with one division, where a stored normal would need the shape's nominal
-            // size, a buffer read per vertex (terminal_mesh.vert).
-            for (render::MeshVertex v : mesh.vertices) {
-                v.normal = render::unitSpaceNormal(v.normal, mesh.nominalSize);
-                vertices.push_back(v);
-            }
-            indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+            const ShapeGeometry geometry = shapeGeometry(mesh);
+            it->second = {
+                {uint32_t(geometry.indices.size()), uint32_t(indices.size()), int32_t(vertices.size())},
+                geometry.twoSided};
+            vertices.insert(vertices.end(), geometry.vertices.begin(), geometry.vertices.end());
+            indices.insert(indices.end(), geometry.indices.begin(), geometry.indices.end());
         }
-        draws_.push_back(it->second);
+        const auto& [draw, twoSided] = it->second;
+        if (sidedRuns_.empty() || sidedRuns_.back().twoSided != twoSided)
+            sidedRuns_.push_back({uint32_t(draws_.size()), 0, twoSided});
+        ++sidedRuns_.back().count;
+        draws_.push_back(draw);
         shapes_.push_back({glm::vec4(mesh.nominalSize, -1.0f), glm::vec4(mesh.boundsMin, 0.0f),
                            glm::vec4(mesh.boundsMax, 0.0f)});
     };
@@ -44,12 +48,34 @@ void ShapeTable::upload(const render::TerminalMeshLibrary& library, std::span<co
     }
     gl::glCreateBuffers(1, &vertices_);
     gl::glNamedBufferStorage(vertices_,
-                             GLsizeiptr(std::max<size_t>(vertices.size(), 1) * sizeof(render::MeshVertex)),
+                             GLsizeiptr(std::max<size_t>(vertices.size(), 1) * sizeof(ShapeVertex)),
                              vertices.empty() ? nullptr : vertices.data(), 0);
     gl::glCreateBuffers(1, &indices_);
     gl::glNamedBufferStorage(indices_, GLsizeiptr(std::max<size_t>(indices.size(), 1) * sizeof(uint32_t)),
                              indices.empty() ? nullptr : indices.data(), 0);
-    bytes_ = vertices.size() * sizeof(render::MeshVertex) + indices.size() * sizeof(uint32_t);
+    bytes_ = vertices.size() * sizeof(ShapeVertex) + indices.size() * sizeof(uint32_t);
+}
+
+void ShapeTable::bindVertices(uint32_t vao, uint32_t binding) const {
+    const struct {
+        GLuint location;
+        GLint components;
+        GLenum type;
+        GLboolean normalized;
+        GLuint offset;
+    } attributes[] = {
+        {HEXLOD_ATTRIBUTE_POSITION, 3, GL_FLOAT, GL_FALSE, offsetof(ShapeVertex, position)},
+        {HEXLOD_ATTRIBUTE_NORMAL, 3, GL_FLOAT, GL_FALSE, offsetof(ShapeVertex, normal)},
+        {HEXLOD_ATTRIBUTE_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(ShapeVertex, rgba)},
+        {HEXLOD_ATTRIBUTE_BACK_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(ShapeVertex, backRgba)},
+    };
+    for (const auto& a : attributes) {
+        gl::glEnableVertexArrayAttrib(vao, a.location);
+        gl::glVertexArrayAttribFormat(vao, a.location, a.components, a.type, a.normalized, a.offset);
+        gl::glVertexArrayAttribBinding(vao, a.location, binding);
+    }
+    gl::glVertexArrayVertexBuffer(vao, binding, vertices_, 0, sizeof(ShapeVertex));
+    gl::glVertexArrayElementBuffer(vao, indices_);
 }
 
 void ShapeTable::setImpostorLayer(uint32_t shape, int layer) {

@@ -1,10 +1,12 @@
 // Every terminal shape of a scene on the GPU, under one global index (shapeBase of its grammar
-// + its shape id): the meshes of the mesh library in one vertex and one index buffer (normals
-// in unit scope space, render::unitSpaceNormal), and per shape what the draw passes need
-// (nominal size, mesh bounds, impostor layer).
+// + its shape id): the meshes of the mesh library in one vertex and one index buffer, as
+// ShapeGeometry (normals in unit scope space, double-sided surfaces as one triangle with two
+// colours), and per shape what the draw passes need (nominal size, mesh bounds, impostor
+// layer, whether it draws without face culling).
 #pragma once
 
 #include "hexlod/lod/gpu_cull.h"
+#include "hexlod/lod/shape_geometry.h"
 #include "hexlod/render/terminal_mesh_library.h"
 
 #include <cstdint>
@@ -28,6 +30,13 @@ struct CoarseMesh {
     uint32_t shape = 0; // the global shape it serves
     std::shared_ptr<const render::TerminalMesh> mesh;
     glm::vec3 deviation{0.0f}; // meshDeviation between the shape's mesh and this one
+};
+
+// Consecutive global shapes that draw alike: two-sided ones (ShapeGeometry::twoSided) without
+// face culling, the others with back faces culled.
+struct SidedRun {
+    uint32_t first = 0, count = 0;
+    bool twoSided = false;
 };
 
 class ShapeTable {
@@ -55,8 +64,12 @@ public:
     const std::vector<glm::vec4>& coarseTable() const { return coarse_; }
     uint32_t triangles(uint32_t shape) const { return draws_.at(shape).indexCount / 3; }
 
+    const std::vector<SidedRun>& sidedRuns() const { return sidedRuns_; }
+
+    // Binds the meshes to `vao` as ShapeVertex attributes from vertex buffer binding `binding`,
+    // and the index buffer.
+    void bindVertices(uint32_t vao, uint32_t binding) const;
     uint32_t vertexBuffer() const { return vertices_; }
-    uint32_t indexBuffer() const { return indices_; }
     uint32_t shapeBuffer() const { return table_; }
     uint64_t byteSize() const { return bytes_; }
 
@@ -65,6 +78,7 @@ private:
     std::vector<MeshDrawInfo> draws_;
     std::vector<GpuShape> shapes_;
     std::vector<glm::vec4> coarse_;
+    std::vector<SidedRun> sidedRuns_;
     uint32_t firstCoarse_ = 0;
     uint32_t vertices_ = 0, indices_ = 0, table_ = 0;
     uint64_t bytes_ = 0;

@@ -29,8 +29,9 @@ struct GpuTerminal {
     uint shapeAndDepth;
 };
 
-// Vertex attribute locations of MeshVertex (render/terminal_mesh.h) and of the per-instance
-// terminal attributes that LOD4 draws read from a draw list.
+// Vertex attribute locations of MeshVertex (render/terminal_mesh.h), of the back side's colour
+// of LOD4's meshes (lod/shape_geometry.h) and of the per-instance terminal attributes that
+// LOD4 draws read from a draw list.
 #define HEXLOD_ATTRIBUTE_POSITION 0
 #define HEXLOD_ATTRIBUTE_NORMAL 1
 #define HEXLOD_ATTRIBUTE_UV 2
@@ -39,6 +40,7 @@ struct GpuTerminal {
 #define HEXLOD_ATTRIBUTE_INSTANCE_BUILDING 5
 #define HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION 6
 #define HEXLOD_ATTRIBUTE_INSTANCE_SIZE 7
+#define HEXLOD_ATTRIBUTE_BACK_COLOR 8
 #define HEXLOD_ATTRIBUTE_INSTANCE_DEPTH 9
 
 #ifdef __cplusplus
