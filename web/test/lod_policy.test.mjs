@@ -70,6 +70,9 @@ test('terminals: LOD3 and LOD2 distances from their geometric errors; backfaces 
     // Behind the wall: the camera at y > wall + depth sees its back.
     assert.equal(classifyTerminal(at(-0.5), axes, 2, 3, 0.3, { lod3, lod2 }, true), 0);
     assert.equal(classifyTerminal(at(-0.2), axes, 2, 3, 0.3, { lod3, lod2 }, true), 4);
+    // A tree's part stands free: from behind, its other side shows.
+    assert.equal(classifyTerminal(at(-0.5), axes, 2, 3, 0.3, { lod3, lod2 }, false, null, 0, Infinity, null, false), 4);
+    assert.equal(classifyTerminal(at(-50), axes, 2, 3, 0.3, { lod3, lod2 }, false, null, 0, Infinity, null, false), 4);
 });
 
 test('a coarse mesh is drawn from where its deviation, scaled by the scope, projects under the budget', () => {

@@ -1,7 +1,7 @@
 // TerminalBatch's sorting of a terminal set into LOD4, LOD3 and LOD2 lists (src/render/
-// terminal_batch.js): terminals behind their wall or outside the view are left out, and the
-// lists are sorted again when the camera has moved or turned enough, or with a new occlusion
-// image, not before; a sorted batch's instance buffers grow with what its lists draw.
+// terminal_batch.js): terminals behind their wall (not a tree's parts) or outside the view are
+// left out, and the lists are sorted again when the camera has moved or turned enough, or with
+// a new occlusion image, not before; a sorted batch's instance buffers grow with what its lists draw.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 import * as THREE from 'three';
@@ -55,6 +55,12 @@ test('terminals behind their wall or outside the view are left out of every list
     all.updateLod([0, 0, 0], distances);
     assert.deepEqual(all.counts, { 4: 2, 3: 0, 2: 0, culled: 1, coarse: 0, occluded: 0 });
     assert.deepEqual(lod4Records(all), [0, 2]);
+    // A tree's parts stand free: the one seen from behind shows its other side.
+    const tree = new TerminalBatch(setOf([[0, 20, 0], [0, -20, 0], [60, 15, 0]]), library, material, impostors,
+        { freeStanding: true });
+    tree.updateLod([0, 0, 0], distances);
+    assert.deepEqual(tree.counts, { 4: 3, 3: 0, 2: 0, culled: 0, coarse: 0, occluded: 0 });
+    assert.deepEqual(lod4Records(tree), [0, 1, 2]);
 });
 
 test('the lists are sorted again once the view turns by half the margin, and not before', () => {

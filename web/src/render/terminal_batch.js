@@ -5,8 +5,9 @@
 // get a hair of depth so the matrix stays invertible for normals). With impostors, terminals
 // are re-sorted into the three lists by lod_policy.classifyTerminal whenever the camera has
 // moved or turned enough for the decision to change, or the LOD distances have changed,
-// leaving out those behind their wall, outside the view or, with occlusion tiles, hidden
-// behind the base volumes (a CPU stand-in for the native renderer's GPU pass); a sorted
+// leaving out those behind their wall (a facade's; a tree's parts have none), outside the
+// view or, with occlusion tiles, hidden behind the base volumes (a CPU stand-in for the
+// native renderer's GPU pass); a sorted
 // batch's LOD4 and coarse instance buffers grow with what the lists draw. Without impostors
 // every terminal is LOD4 and the lists never change, unless a tree batch's cut
 // moves trees between terminals and billboards, or a shape has a coarse mesh: its LOD4
@@ -35,8 +36,9 @@ function fill(list, matrices) {
 
 export class TerminalBatch {
     // `impostors`: an ImpostorSet (impostors.js) or null. `treeCut`: a tree batch, whose
-    // terminals of trees shown as billboards updateLod leaves out.
-    constructor(set, library, material, impostors, { treeCut = false } = {}) {
+    // terminals of trees shown as billboards updateLod leaves out. `freeStanding`: a tree
+    // batch, whose parts no wall hides from behind (they are not backface culled).
+    constructor(set, library, material, impostors, { treeCut = false, freeStanding = treeCut } = {}) {
         this.set = set;
         this.group = new THREE.Group();
         this.group.name = `terminals ${set.cell.q},${set.cell.r}/${set.grammar}`;
@@ -82,6 +84,7 @@ export class TerminalBatch {
         this.lastViewKey = null;
         this.lastDistances = null; // the LOD3, LOD2 and coarse distances of the last sort
         this.sorted = treeCut || this.runs.some((r) => r.lod3 || r.coarse);
+        this.onWall = !freeStanding;
         this.lastCut = -1;
         // The CPU's matrices, kept to sort from, and the lists' records; the instance buffers
         // are counted as they grow (gpuBytes).
@@ -177,7 +180,7 @@ export class TerminalBatch {
                 corner[2] = f[k + 2] - camera[2];
                 for (let j = 0; j < 9; ++j) axes[j] = f[k + 3 + j];
                 const reach = run.coarse ? run.reach[i - run.first] * perMetre : Infinity;
-                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3, view, slack, reach, occlusion);
+                const lod = classifyTerminal(corner, axes, this.sizes[2 * i], this.sizes[2 * i + 1], f[k + 12], distances, !!run.lod3, view, slack, reach, occlusion, this.onWall);
                 if (lod === 0 || lod === OCCLUDED) {
                     ++counts[lod === 0 ? 'culled' : 'occluded'];
                     continue;

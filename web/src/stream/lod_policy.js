@@ -7,9 +7,10 @@
 //   above max_sse * (1 + hysteresis), the extruded set below max_sse * (1 - hysteresis), the
 //   previous choice in between (every cell starts extruded);
 // - per terminal, by the distance to its scope centre: LOD4, LOD3 from the distance at which
-//   geometric_error[3] stays under max_sse, LOD2 from geometric_error[2]'s; a terminal whose
-//   camera is behind the plane its shape recedes to is culled (backface), and without
-//   impostors every visible terminal is LOD4;
+//   geometric_error[3] stays under max_sse, LOD2 from geometric_error[2]'s; a facade's terminal
+//   whose camera is behind the plane its shape recedes to is culled (backface; a tree's parts
+//   stand free and are seen from every side), and without impostors every visible terminal is
+//   LOD4;
 // - per LOD4 terminal of a shape with a coarse mesh, that mesh once the two
 //   meshes' deviation, scaled by the terminal's scope, projects under max_sse from its scope
 //   centre (meshShape in cull_shared.h).
@@ -112,17 +113,18 @@ export function outsideView(view, cx, cy, cz, radius) {
 // `view`, a terminal outside it is culled too; `slack` (metres) is how far the camera may move
 // before the decision is made again: it widens the view test and narrows the coarse mesh's
 // range, so neither decision is wrong until then. With `occlusion` (an OcclusionTiles), a
-// terminal behind the opaque base volumes is OCCLUDED.
+// terminal behind the opaque base volumes is OCCLUDED. `onWall`: false for a tree's parts,
+// which no wall hides from behind.
 export const COARSE = 'coarse';
 // classifyTerminal's answer for a terminal that the `occlusion` tiles (occlusion_tiles.js) hide.
 export const OCCLUDED = 'occluded';
 
-export function classifyTerminal(corner, axes, w, h, d, distances, impostors, view = null, slack = 0, coarseReach = Infinity, occlusion = null) {
+export function classifyTerminal(corner, axes, w, h, d, distances, impostors, view = null, slack = 0, coarseReach = Infinity, occlusion = null, onWall = true) {
     const cx = corner[0] + axes[0] * 0.5 * w + axes[3] * 0.5 * h;
     const cy = corner[1] + axes[1] * 0.5 * w + axes[4] * 0.5 * h;
     const cz = corner[2] + axes[2] * 0.5 * w + axes[5] * 0.5 * h;
     const inFront = -(axes[6] * corner[0] + axes[7] * corner[1] + axes[8] * corner[2]);
-    if (inFront < -d) return 0;
+    if (onWall && inFront < -d) return 0;
     // The scope box's half diagonal, doubled: a mesh may reach past its scope (a balcony's
     // depth ratio is above 1), and an impostor quad covers the mesh's bounds.
     const radius = Math.hypot(w, h, d);

@@ -142,8 +142,9 @@ export class Streamer {
         }
         if (!value.terminals) {
             const library = this.libraries[value.set.grammar];
-            const treeCut = this.trees.enabled && this.grammar(value.set.grammar)?.kind === 'tree';
-            value.terminals = new TerminalBatch(value.set, library, this.materials.terminal, this.impostors.enabled ? this.impostors : null, { treeCut });
+            const trees = this.grammar(value.set.grammar)?.kind === 'tree';
+            const treeCut = this.trees.enabled && trees;
+            value.terminals = new TerminalBatch(value.set, library, this.materials.terminal, this.impostors.enabled ? this.impostors : null, { treeCut, freeStanding: trees });
             this.cache.grow(url, value.terminals.gpuBytes);
         }
         return value.terminals.group;
