@@ -76,14 +76,15 @@ void fruit(MeshBuilder& b, int detail) {
 }
 
 // A tree part drawn coarse is a few pixels across, and the parts are most of the LOD4 pass's
-// triangles at street level. Their coarse levels take a fifth of the triangles, the leaf's a
-// third: measured one part at a time on the default street, a fifth moved the image by under
-// 0.01 dB but for the leaf's, 0.25 dB; a third of the leaf's moves it 0.06 dB
-// (docs/BENCHMARKS.md, "Coarser tree parts").
+// triangles at street level. Their coarse levels take a fifth of the triangles: measured one
+// part at a time on the default street, a fifth moved the image by under 0.01 dB but for the
+// leaf's, 0.25 dB (docs/BENCHMARKS.md, "Coarser tree parts"). The leaf's took a third (0.06 dB)
+// until trees showed their parts from every side; a fifth now costs 0.20 dB and the thesis
+// street 5 % of its frame ("Trees from every side").
 constexpr ShapeGenerator kGenerators[] = {
     {"bark", 16, bark, 0.2f},
     {"twig", 12, twig, 0.2f},
-    {"leaf", 14, leaf, 1.0f / 3.0f},
+    {"leaf", 14, leaf, 0.2f},
     {"fruit", 12, fruit, 0.2f},
 };
 

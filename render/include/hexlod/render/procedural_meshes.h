@@ -22,7 +22,7 @@ std::optional<TerminalMesh> buildProceduralMesh(const grammar::ShapeInfo& shape)
 
 // A coarser mesh of the same shape for where `fine` (the shape's mesh) is small on screen: the
 // generator's level closest to its share of `fine`'s triangles (half, a fifth for the tree
-// parts but the leaf, a third for the leaf; tree_meshes.cpp says why), when it has at most
+// parts; tree_meshes.cpp says why), when it has at most
 // three quarters of them. Empty when `fine` did not come from a generator (a glTF mesh, a
 // fallback box) or no level is coarse enough.
 std::optional<TerminalMesh> buildCoarserProceduralMesh(const grammar::ShapeInfo& shape,
