@@ -72,6 +72,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"lod3_occluded", f.lod3Occluded},
         {"cache_bytes", f.cacheBytes},
         {"gpu_bytes", f.gpuBytes},
+        {"volume_bytes", f.volumeBytes},
         {"impostor_bytes", f.impostorBytes},
         {"resident_bytes", f.residentBytes()}};
 }

@@ -487,9 +487,10 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.cacheLookups = cacheAfter.lookups - cacheBefore.lookups;
     stats.cacheHits = cacheAfter.hits - cacheBefore.hits;
     stats.volumesBuilt = volumes_.stats().built;
-    stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() +
-                     volumes_.stats().residentBytes + ground_.byteSize() + trees_.byteSize() +
-                     depthTiles_.byteSize() + volumeTiles_.byteSize() + impostorQuads_.byteSize() +
+    stats.volumeBytes = volumes_.stats().residentBytes;
+    stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() + stats.volumeBytes +
+                     ground_.byteSize() + trees_.byteSize() + depthTiles_.byteSize() +
+                     volumeTiles_.byteSize() + impostorQuads_.byteSize() +
                      uint64_t(options_.width) * options_.height * 12 * options_.samples;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;

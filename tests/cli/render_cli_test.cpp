@@ -90,6 +90,11 @@ TEST(RenderCli, WalkJsonAndItsFiles) {
         }
     }
     EXPECT_EQ(rows, frames.size());
+    // The base volumes resident are a part of the GPU's bytes.
+    for (const Json& frame : frames) {
+        EXPECT_GT(frame["volume_bytes"].get<uint64_t>(), 0u);
+        EXPECT_LT(frame["volume_bytes"].get<uint64_t>(), frame["gpu_bytes"].get<uint64_t>());
+    }
 }
 
 TEST(RenderCli, WalkTimesEveryDrawPassWhenAsked) {

@@ -106,6 +106,7 @@ struct FrameStats {
     uint64_t cacheLookups = 0, cacheHits = 0; // this frame's
     uint64_t cacheBytes = 0;                  // terminal sets in the cache's memory tier
     uint64_t gpuBytes = 0;                    // arena, draw lists, meshes, base volumes, frame target
+    uint64_t volumeBytes = 0;                 // of gpuBytes, the base volumes resident (VolumeCache)
     uint64_t impostorBytes = 0;               // impostor textures
     // GL milliseconds per draw pass, with CityRendererOptions::passClock; 0 otherwise.
     PassTimes passMs{};
