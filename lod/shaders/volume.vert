@@ -1,12 +1,13 @@
 #version 450 core
 // Base volumes in cell-local metres, placed by their cell's camera-relative origin (computed
-// in double on the CPU, so a city 1e7 m out renders as steadily as one at the origin).
+// in double on the CPU, so a city 1e7 m out renders as steadily as one at the origin); their
+// vertices as lod/volume_vertex.h packs them (the ground's as MeshVertex, without elements).
 #include "gpu_types.h"
 #include "frame.glsl"
 
 layout(location = HEXLOD_ATTRIBUTE_POSITION) in vec3 localPosition;
 layout(location = HEXLOD_ATTRIBUTE_NORMAL) in vec3 normal;
-layout(location = HEXLOD_ATTRIBUTE_UV) in vec2 uv;
+layout(location = HEXLOD_ATTRIBUTE_ELEMENT) in float element;
 layout(location = HEXLOD_ATTRIBUTE_COLOR) in vec4 albedo;
 
 uniform vec3 cellOffset;
@@ -24,6 +25,6 @@ void main() {
     vNormal = normal;
     vAlbedo = albedo.rgb;
     vLocal = localPosition;
-    vElement = uv.y > 0.0 ? uv.x : -1.0;
+    vElement = element;
     vShaded = shade(albedo.rgb, normalize(normal), vPosition);
 }

@@ -3,7 +3,6 @@
 #include "hexlod/lod/lod1_elements.h"
 #include "hexlod/render/base_volume_mesh.h"
 #include "hexlod/render/gl_api.h"
-#include "hexlod/render/mesh_vertex_format.h"
 
 #include <chrono>
 #include <cstring>
@@ -12,8 +11,8 @@ namespace hexlod::lod {
 namespace {
 
 void release(VolumeMesh& mesh) {
-    gl::glDeleteVertexArrays(1, &mesh.vao);
-    for (uint32_t buffer : {mesh.vertexBuffer, mesh.indexBuffer, mesh.elementBuffer, mesh.parameterBuffer})
+    releaseVolumeMesh(mesh.gpu);
+    for (uint32_t buffer : {mesh.elementBuffer, mesh.parameterBuffer})
         if (buffer) gl::glDeleteBuffers(1, &buffer);
 }
 
@@ -39,8 +38,9 @@ void VolumeCache::beginFrame(uint64_t frame) {
 
 void VolumeCache::evict() {
     // What the previous frame drew stays even over budget: the next frame most likely draws it
-    // again, and a view that needs more than the budget (the thesis city's overview draws
-    // 360 MB of volumes) would otherwise rebuild the same meshes frame after frame.
+    // again, and a view that needs more than the budget would otherwise rebuild the same meshes
+    // frame after frame (the thesis city's overview drew 366 MB of volumes before they were
+    // packed and LOD1's elements became lazy; 129 MB since).
     while (stats_.residentBytes > budget_) {
         auto oldest = meshes_.end();
         for (auto it = meshes_.begin(); it != meshes_.end(); ++it) {
@@ -65,40 +65,47 @@ const VolumeMesh* VolumeCache::find(uint32_t batch, float inset) const {
     return it == meshes_.end() ? nullptr : &it->second;
 }
 
-const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset) {
+// LOD1's elements and parameters for a mesh at inset 0, from the batch's extruded set.
+void VolumeCache::addLod1(VolumeMesh& mesh, const grammar::ExtrudedSet& extruded) {
+    const std::vector<GpuLod1Element> elements = packLod1Elements(extruded, catalog_.scene().config.seed);
+    mesh.elementBuffer = storage(elements.data(), elements.size() * sizeof(GpuLod1Element));
+    mesh.parameterBuffer = storage(extruded.parameters.data(), extruded.parameters.size() * sizeof(float));
+    const uint64_t bytes =
+        elements.size() * sizeof(GpuLod1Element) + extruded.parameters.size() * sizeof(float);
+    mesh.bytes += bytes;
+    stats_.residentBytes += bytes;
+}
+
+const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset, bool lod1) {
     const uint64_t key = keyOf(batch, inset);
-    if (auto it = meshes_.find(key); it != meshes_.end()) {
-        it->second.lastUsed = frame_;
-        return it->second;
-    }
     const auto start = std::chrono::steady_clock::now();
+    const auto counted = [&](VolumeMesh& mesh) -> const VolumeMesh& {
+        stats_.buildMs +=
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        return mesh;
+    };
+    if (auto it = meshes_.find(key); it != meshes_.end()) {
+        VolumeMesh& mesh = it->second;
+        mesh.lastUsed = frame_;
+        if (!lod1 || mesh.elementBuffer || inset != 0.0f) return mesh;
+        addLod1(mesh, catalog_.expandExtruded(batch));
+        return counted(mesh);
+    }
     const grammar::ExtrudedSet extruded = catalog_.expandExtruded(batch);
     VolumeMesh mesh;
     const render::TerminalMesh shell = render::buildBaseVolumes(extruded, inset, &mesh.buildings);
     mesh.cellOrigin = catalog_.cellOrigin(catalog_.batch(batch).cell);
     mesh.grammar = catalog_.batch(batch).grammar;
-    if (inset == 0.0f) {
-        const std::vector<GpuLod1Element> elements = packLod1Elements(extruded, catalog_.scene().config.seed);
-        mesh.elementBuffer = storage(elements.data(), elements.size() * sizeof(GpuLod1Element));
-        mesh.parameterBuffer =
-            storage(extruded.parameters.data(), extruded.parameters.size() * sizeof(float));
-        mesh.bytes += elements.size() * sizeof(GpuLod1Element) + extruded.parameters.size() * sizeof(float);
-    }
     mesh.lastUsed = frame_;
     mesh.indexCount = uint32_t(shell.indices.size());
     render::vertexBounds(shell.vertices, mesh.boundsMin, mesh.boundsMax);
-    mesh.bytes += shell.byteSize() + mesh.buildings.size() * sizeof(render::VolumeBuilding);
-    mesh.vertexBuffer = storage(shell.vertices.data(), shell.vertices.size() * sizeof(render::MeshVertex));
-    mesh.indexBuffer = storage(shell.indices.data(), shell.indices.size() * sizeof(uint32_t));
-    gl::glCreateVertexArrays(1, &mesh.vao);
-    gl::glVertexArrayVertexBuffer(mesh.vao, 0, mesh.vertexBuffer, 0, sizeof(render::MeshVertex));
-    gl::glVertexArrayElementBuffer(mesh.vao, mesh.indexBuffer);
-    render::setMeshVertexFormat(mesh.vao, 0);
+    mesh.gpu = uploadVolumeMesh(shell);
+    mesh.bytes = mesh.gpu.bytes + mesh.buildings.size() * sizeof(render::VolumeBuilding);
     stats_.residentBytes += mesh.bytes;
     ++stats_.built;
-    stats_.buildMs +=
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return meshes_[key] = mesh;
+    VolumeMesh& placed = meshes_[key] = std::move(mesh);
+    if (lod1 && inset == 0.0f) addLod1(placed, extruded);
+    return counted(placed);
 }
 
 VolumeStats VolumeCache::stats() const {

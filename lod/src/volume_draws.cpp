@@ -34,7 +34,7 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
             timer.restart(); // the tiles belong to no pass
         }
         for (VolumeDraw& draw : draws) {
-            draw.mesh = &volumes_.acquire(draw.batch, draw.inset);
+            draw.mesh = &volumes_.acquire(draw.batch, draw.inset, draw.lod0Blend < 1.0f);
             // Building by building too: at street level a batch that shows at all often shows
             // a few of its buildings only, and with multisampling llvmpipe shades every
             // fragment it rasterises, hidden or not (it skips hidden ones only at one sample).
@@ -85,18 +85,19 @@ std::vector<glm::uvec2> CityRenderer::visibleBuildingRuns(const VolumeDraw& draw
 
 // One draw per run; a single run is the common case (the whole mesh, or every building left).
 void CityRenderer::drawRuns(const VolumeDraw& draw, FrameStats& stats) {
-    gl::glBindVertexArray(draw.mesh->vao);
+    const VolumeBuffers& gpu = draw.mesh->gpu;
+    gl::glBindVertexArray(gpu.vao);
     if (draw.runs.size() == 1) {
-        gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.runs[0].y), GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(uintptr_t(draw.runs[0].x) * sizeof(uint32_t)));
+        gl::glDrawElements(GL_TRIANGLES, GLsizei(draw.runs[0].y), gpu.indexType,
+                           reinterpret_cast<const void*>(uintptr_t(draw.runs[0].x) * gpu.indexSize));
     } else {
         std::vector<GLsizei> counts;
         std::vector<const void*> offsets;
         for (const glm::uvec2& run : draw.runs) {
             counts.push_back(GLsizei(run.y));
-            offsets.push_back(reinterpret_cast<const void*>(uintptr_t(run.x) * sizeof(uint32_t)));
+            offsets.push_back(reinterpret_cast<const void*>(uintptr_t(run.x) * gpu.indexSize));
         }
-        gl::glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(),
+        gl::glMultiDrawElements(GL_TRIANGLES, counts.data(), gpu.indexType, offsets.data(),
                                 GLsizei(counts.size()));
     }
     for (const glm::uvec2& run : draw.runs) stats.triangles += run.y / 3;

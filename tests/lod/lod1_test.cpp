@@ -7,9 +7,9 @@
 #include "hexlod/lod/lod1_codegen.h"
 #include "hexlod/lod/lod1_elements.h"
 #include "hexlod/lod/lod1_query.h"
+#include "hexlod/lod/volume_vertex.h"
 #include "hexlod/render/base_volume_mesh.h"
 #include "hexlod/render/framebuffer.h"
-#include "hexlod/render/mesh_vertex_format.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -194,22 +194,14 @@ TEST_F(Lod1GpuTest, TheGlslWalkFindsWhatTheCpuWalkFinds) {
     frame.sunColour = glm::vec4(1.0f);
     frame.sky = glm::vec4(0.5f, 0.5f, 0.5f, 0.0f);
     frame.viewport = glm::vec4(float(size), float(size), 1.0f / float(size), 1.0f / float(size));
-    GLuint buffers[5];
-    gl::glCreateBuffers(5, buffers);
+    GLuint buffers[3];
+    gl::glCreateBuffers(3, buffers);
     gl::glNamedBufferStorage(buffers[0], sizeof frame, &frame, 0);
     gl::glNamedBufferStorage(buffers[1], GLsizeiptr(elements.size() * sizeof(GpuLod1Element)),
                              elements.data(), 0);
     gl::glNamedBufferStorage(buffers[2], GLsizeiptr(extruded.parameters.size() * sizeof(float)),
                              extruded.parameters.data(), 0);
-    gl::glNamedBufferStorage(buffers[3], GLsizeiptr(shell.vertices.size() * sizeof(render::MeshVertex)),
-                             shell.vertices.data(), 0);
-    gl::glNamedBufferStorage(buffers[4], GLsizeiptr(shell.indices.size() * sizeof(uint32_t)),
-                             shell.indices.data(), 0);
-    GLuint vao = 0;
-    gl::glCreateVertexArrays(1, &vao);
-    gl::glVertexArrayVertexBuffer(vao, 0, buffers[3], 0, sizeof(render::MeshVertex));
-    gl::glVertexArrayElementBuffer(vao, buffers[4]);
-    render::setMeshVertexFormat(vao, 0);
+    VolumeBuffers shellBuffers = uploadVolumeMesh(shell); // as VolumeCache uploads it
     gl::glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers[0]);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, buffers[1]);
     gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, buffers[2]);
@@ -221,12 +213,12 @@ TEST_F(Lod1GpuTest, TheGlslWalkFindsWhatTheCpuWalkFinds) {
     program.set("cellOffset", -eye);
     program.set("lod0Blend", 0.0f);
     program.set("shapeBase", 0u);
-    gl::glBindVertexArray(vao);
-    gl::glDrawElements(GL_TRIANGLES, GLsizei(shell.indices.size()), GL_UNSIGNED_INT, nullptr);
+    gl::glBindVertexArray(shellBuffers.vao);
+    gl::glDrawElements(GL_TRIANGLES, GLsizei(shell.indices.size()), shellBuffers.indexType, nullptr);
     gl::glBindVertexArray(0);
     render::Image ids = target.readColor(1);
-    gl::glDeleteVertexArrays(1, &vao);
-    gl::glDeleteBuffers(5, buffers);
+    releaseVolumeMesh(shellBuffers);
+    gl::glDeleteBuffers(3, buffers);
 
     // The point each pixel reports in the test output is recomputed here from its ray.
     const glm::mat4 inverse = glm::inverse(frame.viewProjection);

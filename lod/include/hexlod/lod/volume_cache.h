@@ -5,6 +5,7 @@
 #pragma once
 
 #include "hexlod/cells/batch_catalog.h"
+#include "hexlod/lod/volume_vertex.h"
 #include "hexlod/render/base_volume_mesh.h"
 
 #include <cstdint>
@@ -14,9 +15,10 @@
 namespace hexlod::lod {
 
 struct VolumeMesh {
-    uint32_t vao = 0, vertexBuffer = 0, indexBuffer = 0;
+    VolumeBuffers gpu; // the vertex array and buffers (volume_vertex.h)
     uint32_t indexCount = 0;
-    // LOD1's view of the same batch (walls at inset 0 only): its elements and parameters.
+    // LOD1's view of the same batch (walls at inset 0 only): its elements and parameters, 0
+    // until a frame draws the batch at LOD1.
     uint32_t elementBuffer = 0, parameterBuffer = 0;
     uint32_t grammar = 0;
     uint64_t bytes = 0;
@@ -44,9 +46,12 @@ public:
     VolumeCache& operator=(const VolumeCache&) = delete;
 
     void beginFrame(uint64_t frame);
-    // The batch's base volumes, walls set `inset` metres inwards (0 for LOD0). Valid until the
-    // next acquire() or beginFrame().
-    const VolumeMesh& acquire(uint32_t batch, float inset);
+    // The batch's base volumes, walls set `inset` metres inwards (0 for LOD0), with LOD1's
+    // elements and parameters when `lod1` (inset 0 only): built the first time a frame draws
+    // the batch at LOD1, since most batches, and all of them in an overview, draw at LOD0 only
+    // (the elements take as many bytes again as the walls). Valid until the next acquire() or
+    // beginFrame().
+    const VolumeMesh& acquire(uint32_t batch, float inset, bool lod1 = false);
     // The batch's mesh if it is resident, else null: neither builds nor counts as a use, so a
     // caller can test its bounds before deciding to draw it.
     const VolumeMesh* find(uint32_t batch, float inset) const;
@@ -54,6 +59,7 @@ public:
 
 private:
     void evict();
+    void addLod1(VolumeMesh& mesh, const grammar::ExtrudedSet& extruded);
     uint64_t keyOf(uint32_t batch, float inset) const;
 
     const cells::BatchCatalog& catalog_;

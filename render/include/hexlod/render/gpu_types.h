@@ -42,6 +42,8 @@ struct GpuTerminal {
 #define HEXLOD_ATTRIBUTE_INSTANCE_SIZE 7
 #define HEXLOD_ATTRIBUTE_BACK_COLOR 8
 #define HEXLOD_ATTRIBUTE_INSTANCE_DEPTH 9
+// A base volume vertex's extruded-set element (lod/volume_vertex.h).
+#define HEXLOD_ATTRIBUTE_ELEMENT 10
 
 #ifdef __cplusplus
 static_assert(sizeof(GpuTerminal) == 32);
