@@ -1,5 +1,6 @@
-// MeshVertex (terminal_mesh.h) as GL vertex attributes: every pass that draws meshes binds
-// them through here, at the locations gpu_types.h names.
+// MeshVertex (terminal_mesh.h) as GL vertex attributes, at the locations gpu_types.h names:
+// the impostor baker's meshes and the ground. The LOD4 pass and the base volumes upload
+// packed layouts of their own (lod/shape_geometry.h, lod/volume_vertex.h).
 #pragma once
 
 #include <cstdint>
