@@ -5,6 +5,7 @@
 #include "hexlod/lod/lod1_codegen.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/gpu_types.h"
+#include "hexlod/render/mesh_vertex_format.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -39,23 +40,15 @@ constexpr uint32_t kDepthTilesUnit = 7;
 
 // The draw-list records as per-instance attributes (gpu_types.h names their locations).
 void setTerminalInstanceFormat(uint32_t vao, uint32_t binding) {
-    const struct {
-        GLuint location;
-        GLint components;
-        GLenum type;
-        GLuint offset;
-    } attributes[] = {
-        {HEXLOD_ATTRIBUTE_INSTANCE_POSITION, 3, GL_FLOAT, 0},
-        {HEXLOD_ATTRIBUTE_INSTANCE_BUILDING, 1, GL_FLOAT, 12}, // the transition factor in draw lists
-        {HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION, 4, GL_SHORT, 16},
-        {HEXLOD_ATTRIBUTE_INSTANCE_SIZE, 2, GL_HALF_FLOAT, 24},
-        {HEXLOD_ATTRIBUTE_INSTANCE_DEPTH, 1, GL_HALF_FLOAT, 30}, // 28 holds the shape, which no shader reads
+    const render::VertexAttribute attributes[] = {
+        {HEXLOD_ATTRIBUTE_INSTANCE_POSITION, 3, GL_FLOAT, false, 0},
+        {HEXLOD_ATTRIBUTE_INSTANCE_BUILDING, 1, GL_FLOAT, false, 12}, // the transition factor in draw lists
+        {HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION, 4, GL_SHORT, true, 16},
+        {HEXLOD_ATTRIBUTE_INSTANCE_SIZE, 2, GL_HALF_FLOAT, false, 24},
+        {HEXLOD_ATTRIBUTE_INSTANCE_DEPTH, 1, GL_HALF_FLOAT, false,
+         30}, // 28 holds the shape, which no shader reads
     };
-    for (const auto& a : attributes) {
-        gl::glEnableVertexArrayAttrib(vao, a.location);
-        gl::glVertexArrayAttribFormat(vao, a.location, a.components, a.type, a.type == GL_SHORT, a.offset);
-        gl::glVertexArrayAttribBinding(vao, a.location, binding);
-    }
+    render::setVertexAttributes(vao, binding, attributes);
     gl::glVertexArrayBindingDivisor(vao, binding, 1);
 }
 

@@ -2,6 +2,7 @@
 #include "hexlod/lod/shape_table.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/gpu_types.h"
+#include "hexlod/render/mesh_vertex_format.h"
 
 #include <cstddef>
 
@@ -57,23 +58,13 @@ void ShapeTable::upload(const render::TerminalMeshLibrary& library, std::span<co
 }
 
 void ShapeTable::bindVertices(uint32_t vao, uint32_t binding) const {
-    const struct {
-        GLuint location;
-        GLint components;
-        GLenum type;
-        GLboolean normalized;
-        GLuint offset;
-    } attributes[] = {
-        {HEXLOD_ATTRIBUTE_POSITION, 3, GL_FLOAT, GL_FALSE, offsetof(ShapeVertex, position)},
-        {HEXLOD_ATTRIBUTE_NORMAL, 3, GL_FLOAT, GL_FALSE, offsetof(ShapeVertex, normal)},
-        {HEXLOD_ATTRIBUTE_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(ShapeVertex, rgba)},
-        {HEXLOD_ATTRIBUTE_BACK_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(ShapeVertex, backRgba)},
+    const render::VertexAttribute attributes[] = {
+        {HEXLOD_ATTRIBUTE_POSITION, 3, GL_FLOAT, false, offsetof(ShapeVertex, position)},
+        {HEXLOD_ATTRIBUTE_NORMAL, 3, GL_FLOAT, false, offsetof(ShapeVertex, normal)},
+        {HEXLOD_ATTRIBUTE_COLOR, 4, GL_UNSIGNED_BYTE, true, offsetof(ShapeVertex, rgba)},
+        {HEXLOD_ATTRIBUTE_BACK_COLOR, 4, GL_UNSIGNED_BYTE, true, offsetof(ShapeVertex, backRgba)},
     };
-    for (const auto& a : attributes) {
-        gl::glEnableVertexArrayAttrib(vao, a.location);
-        gl::glVertexArrayAttribFormat(vao, a.location, a.components, a.type, a.normalized, a.offset);
-        gl::glVertexArrayAttribBinding(vao, a.location, binding);
-    }
+    render::setVertexAttributes(vao, binding, attributes);
     gl::glVertexArrayVertexBuffer(vao, binding, vertices_, 0, sizeof(ShapeVertex));
     gl::glVertexArrayElementBuffer(vao, indices_);
 }

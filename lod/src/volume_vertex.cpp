@@ -2,6 +2,7 @@
 #include "hexlod/lod/volume_vertex.h"
 #include "hexlod/render/gl_api.h"
 #include "hexlod/render/gpu_types.h"
+#include "hexlod/render/mesh_vertex_format.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,24 +63,14 @@ VolumeBuffers uploadVolumeMesh(const render::TerminalMesh& mesh) {
     }
     out.bytes = vertices.size() * sizeof(VolumeVertex) + mesh.indices.size() * out.indexSize;
 
-    const struct {
-        GLuint location;
-        GLint components;
-        GLenum type;
-        GLboolean normalized;
-        GLuint offset;
-    } attributes[] = {
-        {HEXLOD_ATTRIBUTE_POSITION, 3, GL_FLOAT, GL_FALSE, offsetof(VolumeVertex, position)},
-        {HEXLOD_ATTRIBUTE_NORMAL, 4, GL_INT_2_10_10_10_REV, GL_TRUE, offsetof(VolumeVertex, normal)},
-        {HEXLOD_ATTRIBUTE_ELEMENT, 1, GL_FLOAT, GL_FALSE, offsetof(VolumeVertex, element)},
-        {HEXLOD_ATTRIBUTE_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(VolumeVertex, rgba)},
+    const render::VertexAttribute attributes[] = {
+        {HEXLOD_ATTRIBUTE_POSITION, 3, GL_FLOAT, false, offsetof(VolumeVertex, position)},
+        {HEXLOD_ATTRIBUTE_NORMAL, 4, GL_INT_2_10_10_10_REV, true, offsetof(VolumeVertex, normal)},
+        {HEXLOD_ATTRIBUTE_ELEMENT, 1, GL_FLOAT, false, offsetof(VolumeVertex, element)},
+        {HEXLOD_ATTRIBUTE_COLOR, 4, GL_UNSIGNED_BYTE, true, offsetof(VolumeVertex, rgba)},
     };
     gl::glCreateVertexArrays(1, &out.vao);
-    for (const auto& a : attributes) {
-        gl::glEnableVertexArrayAttrib(out.vao, a.location);
-        gl::glVertexArrayAttribFormat(out.vao, a.location, a.components, a.type, a.normalized, a.offset);
-        gl::glVertexArrayAttribBinding(out.vao, a.location, 0);
-    }
+    render::setVertexAttributes(out.vao, 0, attributes);
     gl::glVertexArrayVertexBuffer(out.vao, 0, out.vertexBuffer, 0, sizeof(VolumeVertex));
     gl::glVertexArrayElementBuffer(out.vao, out.indexBuffer);
     return out;
