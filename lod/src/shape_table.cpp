@@ -5,7 +5,6 @@
 #include "hexlod/render/mesh_vertex_format.h"
 
 #include <cstddef>
-
 #include <map>
 
 namespace hexlod::lod {
