@@ -481,9 +481,9 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.cacheHits = cacheAfter.hits - cacheBefore.hits;
     stats.volumesBuilt = volumes_.stats().built;
     stats.volumeBytes = volumes_.stats().residentBytes;
-    stats.gpuBytes = arena_.byteSize() + cull_.byteSize() + shapes_.byteSize() + stats.volumeBytes +
-                     ground_.byteSize() + trees_.byteSize() + depthTiles_.byteSize() +
-                     volumeTiles_.byteSize() + impostorQuads_.byteSize() +
+    stats.gpuBytes = arena_.byteSize() + arena_.stats().pageTableBytes + cull_.byteSize() +
+                     shapes_.byteSize() + stats.volumeBytes + ground_.byteSize() + trees_.byteSize() +
+                     depthTiles_.byteSize() + volumeTiles_.byteSize() + impostorQuads_.byteSize() +
                      uint64_t(options_.width) * options_.height * 12 * options_.samples;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;

@@ -113,6 +113,9 @@ ArenaStats TerminalArena::stats() const {
     ArenaStats s = stats_;
     s.residentBatches = uint32_t(slots_.size());
     s.freePages = uint32_t(free_.size());
+    for (const auto& [key, slot] : slots_)
+        s.pageTableBytes +=
+            slot.batch.pages.size() * sizeof(uint32_t) + slot.batch.bounds.size() * sizeof(PageBounds);
     return s;
 }
 

@@ -365,6 +365,8 @@ TEST_F(CullTest, ArenaEvictsTheLeastRecentlyDrawnWhenFull) {
     EXPECT_EQ(arena.stats().evictions, 1u);
     EXPECT_EQ(arena.stats().residentRecords, 2500u);
     EXPECT_EQ(arena.stats().freePages, 47u - 16u - 24u);
+    // The page tables of the 16 + 24 resident pages, counted with the arena's bytes.
+    EXPECT_EQ(arena.stats().pageTableBytes, (16u + 24u) * (sizeof(uint32_t) + sizeof(PageBounds)));
     // Everything resident is in use this frame: a set that does not fit is refused, not forced.
     TerminalSet d = randomSet(random, 1000, 2, 10);
     EXPECT_FALSE(arena.acquire(4, d));

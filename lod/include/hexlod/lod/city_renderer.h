@@ -105,9 +105,10 @@ struct FrameStats {
     uint32_t lod3Occluded = 0;                // LOD3 and LOD3-LOD2 entries dropped as hidden
     uint64_t cacheLookups = 0, cacheHits = 0; // this frame's
     uint64_t cacheBytes = 0;                  // terminal sets in the cache's memory tier
-    uint64_t gpuBytes = 0;                    // arena, draw lists, meshes, base volumes, frame target
-    uint64_t volumeBytes = 0;                 // of gpuBytes, the base volumes resident (VolumeCache)
-    uint64_t impostorBytes = 0;               // impostor textures
+    // The arena (and its page tables, on the CPU), draw lists, meshes, base volumes, frame target.
+    uint64_t gpuBytes = 0;
+    uint64_t volumeBytes = 0;   // of gpuBytes, the base volumes resident (VolumeCache)
+    uint64_t impostorBytes = 0; // impostor textures
     // GL milliseconds per draw pass, with CityRendererOptions::passClock; 0 otherwise.
     PassTimes passMs{};
     uint64_t residentBytes() const { return cacheBytes + gpuBytes + impostorBytes; }

@@ -28,6 +28,9 @@ struct ArenaStats {
     uint64_t uploadedBytes = 0; // since the last beginFrame()
     uint64_t evictions = 0;     // in total
     uint32_t rejected = 0;      // since the last beginFrame(): batches that did not fit
+    // The resident batches' page lists and page bounds (ArenaBatch), held on the CPU beside
+    // the buffer: about 90 bytes a page of 64 records.
+    uint64_t pageTableBytes = 0;
 };
 
 // A batch resident in the arena.
