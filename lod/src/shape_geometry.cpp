@@ -87,23 +87,27 @@ ShapeGeometry shapeGeometry(const render::TerminalMesh& mesh) {
     for (uint32_t index : mesh.indices)
         if (index >= mesh.vertices.size()) return oneSided;
 
+    std::vector<Triangle> all;
+    all.reserve(triangles);
     std::map<PositionKey, std::vector<size_t>> byPositions;
     for (size_t t = 0; t < triangles; ++t) {
-        const Triangle triangle = triangleAt(oneSided, t);
-        if (!flat(triangle, oneSided.vertices)) return oneSided;
-        byPositions[keyOf(triangle)].push_back(t);
+        all.push_back(triangleAt(oneSided, t));
+        if (!flat(all.back(), oneSided.vertices)) return oneSided;
+        byPositions[keyOf(all.back())].push_back(t);
     }
+    // Each triangle's partner among those over the same positions (in mesh order).
     constexpr size_t kNone = ~size_t(0);
     std::vector<size_t> partner(triangles, kNone);
-    for (size_t t = 0; t < triangles; ++t) {
-        if (partner[t] != kNone) continue;
-        const Triangle triangle = triangleAt(oneSided, t);
-        for (size_t u : byPositions[keyOf(triangle)]) {
-            if (u == t || partner[u] != kNone || !reversed(triangle, triangleAt(oneSided, u))) continue;
-            partner[t] = u, partner[u] = t;
-            break;
+    for (const auto& [key, candidates] : byPositions) {
+        for (size_t t : candidates) {
+            if (partner[t] != kNone) continue;
+            for (size_t u : candidates) {
+                if (u == t || partner[u] != kNone || !reversed(all[t], all[u])) continue;
+                partner[t] = u, partner[u] = t;
+                break;
+            }
+            if (partner[t] == kNone) return oneSided;
         }
-        if (partner[t] == kNone) return oneSided;
     }
 
     // The first of each pair stays, its vertices given the other side's colour.
@@ -112,7 +116,7 @@ ShapeGeometry shapeGeometry(const render::TerminalMesh& mesh) {
     std::vector<uint32_t> placed(mesh.vertices.size(), ~0u);
     for (size_t t = 0; t < triangles; ++t) {
         if (partner[t] < t) continue;
-        const Triangle front = triangleAt(oneSided, t), back = triangleAt(oneSided, partner[t]);
+        const Triangle &front = all[t], &back = all[partner[t]];
         for (size_t j = 0; j < 3; ++j) {
             const uint32_t backRgba = colourAt(back, front.position[j], oneSided.vertices);
             uint32_t& index = placed[front.index[j]];

@@ -7,6 +7,14 @@
 #include <limits>
 
 namespace hexlod::lod {
+namespace {
+
+// What a resident batch holds on the CPU beside its records in the buffer.
+uint64_t pageTableBytes(const ArenaBatch& batch) {
+    return batch.pages.size() * sizeof(uint32_t) + batch.bounds.size() * sizeof(PageBounds);
+}
+
+} // namespace
 
 TerminalArena::~TerminalArena() {
     if (buffer_) gl::glDeleteBuffers(1, &buffer_);
@@ -58,6 +66,7 @@ bool TerminalArena::evictOne() {
     }
     if (oldest == slots_.end()) return false;
     // Freed pages go back in descending order so the lowest is reused first.
+    stats_.pageTableBytes -= pageTableBytes(oldest->second.batch);
     std::vector<uint32_t> pages = std::move(oldest->second.batch.pages);
     std::sort(pages.begin(), pages.end(), std::greater<>());
     free_.insert(free_.end(), pages.begin(), pages.end());
@@ -103,6 +112,7 @@ const ArenaBatch* TerminalArena::acquire(uint64_t key, const grammar::TerminalSe
         p += run;
     }
     slot.batch.bounds = pageBounds(set);
+    stats_.pageTableBytes += pageTableBytes(slot.batch);
     stats_.residentRecords += records;
     ++stats_.uploads;
     stats_.uploadedBytes += records * sizeof(grammar::TerminalRecord);
@@ -113,9 +123,6 @@ ArenaStats TerminalArena::stats() const {
     ArenaStats s = stats_;
     s.residentBatches = uint32_t(slots_.size());
     s.freePages = uint32_t(free_.size());
-    for (const auto& [key, slot] : slots_)
-        s.pageTableBytes +=
-            slot.batch.pages.size() * sizeof(uint32_t) + slot.batch.bounds.size() * sizeof(PageBounds);
     return s;
 }
 

@@ -16,13 +16,6 @@ void release(VolumeMesh& mesh) {
         if (buffer) gl::glDeleteBuffers(1, &buffer);
 }
 
-uint32_t storage(const void* data, size_t bytes) {
-    uint32_t buffer = 0;
-    gl::glCreateBuffers(1, &buffer);
-    gl::glNamedBufferStorage(buffer, GLsizeiptr(std::max<size_t>(bytes, 4)), bytes ? data : nullptr, 0);
-    return buffer;
-}
-
 } // namespace
 
 VolumeCache::~VolumeCache() {
@@ -68,8 +61,9 @@ const VolumeMesh* VolumeCache::find(uint32_t batch, float inset) const {
 // LOD1's elements and parameters for a mesh at inset 0, from the batch's extruded set.
 void VolumeCache::addLod1(VolumeMesh& mesh, const grammar::ExtrudedSet& extruded) {
     const std::vector<GpuLod1Element> elements = packLod1Elements(extruded, catalog_.scene().config.seed);
-    mesh.elementBuffer = storage(elements.data(), elements.size() * sizeof(GpuLod1Element));
-    mesh.parameterBuffer = storage(extruded.parameters.data(), extruded.parameters.size() * sizeof(float));
+    mesh.elementBuffer = immutableBuffer(elements.data(), elements.size() * sizeof(GpuLod1Element));
+    mesh.parameterBuffer =
+        immutableBuffer(extruded.parameters.data(), extruded.parameters.size() * sizeof(float));
     const uint64_t bytes =
         elements.size() * sizeof(GpuLod1Element) + extruded.parameters.size() * sizeof(float);
     mesh.bytes += bytes;

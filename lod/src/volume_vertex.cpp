@@ -22,15 +22,18 @@ float fromSnorm10(uint32_t bits) {
     return std::max(float(value) / 511.0f, -1.0f);
 }
 
-template <typename Index> uint32_t storage(const std::vector<Index>& data) {
-    uint32_t buffer = 0;
-    gl::glCreateBuffers(1, &buffer);
-    gl::glNamedBufferStorage(buffer, GLsizeiptr(std::max<size_t>(data.size() * sizeof(Index), 4)),
-                             data.empty() ? nullptr : data.data(), 0);
-    return buffer;
+template <typename Element> uint32_t storage(const std::vector<Element>& data) {
+    return immutableBuffer(data.data(), data.size() * sizeof(Element));
 }
 
 } // namespace
+
+uint32_t immutableBuffer(const void* data, size_t bytes) {
+    uint32_t buffer = 0;
+    gl::glCreateBuffers(1, &buffer);
+    gl::glNamedBufferStorage(buffer, GLsizeiptr(std::max<size_t>(bytes, 4)), bytes ? data : nullptr, 0);
+    return buffer;
+}
 
 uint32_t packSnorm10(const glm::vec3& unit) {
     return snorm10(unit.x) | (snorm10(unit.y) << 10) | (snorm10(unit.z) << 20);

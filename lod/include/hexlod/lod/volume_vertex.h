@@ -7,6 +7,7 @@
 
 #include "hexlod/render/terminal_mesh.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -39,5 +40,9 @@ struct VolumeBuffers {
 };
 VolumeBuffers uploadVolumeMesh(const render::TerminalMesh& mesh);
 void releaseVolumeMesh(VolumeBuffers& buffers);
+
+// An immutable GL buffer of `bytes` bytes from `data` (at least 4: the GL refuses an empty
+// one), for a base volume's buffers and LOD1's elements beside them.
+uint32_t immutableBuffer(const void* data, size_t bytes);
 
 } // namespace hexlod::lod
