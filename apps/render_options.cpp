@@ -11,7 +11,8 @@ void addRenderOptions(CLI::App& command, RenderOptions& o) {
     command.add_option("--impostor-cache", o.impostorStore,
                        "Folder of baked impostors (EXR), reused across runs");
     command.add_option("--workers", o.workers,
-                       "Background generation threads (0: in the frame, deterministic)");
+                       "Background generation threads (0: visible batches in the frame, deterministic, "
+                       "and the prefetch on an idle-priority thread)");
     command.add_option("--samples", o.samples, "Samples per pixel (multisampling; 1 to the GL's maximum)");
 }
 

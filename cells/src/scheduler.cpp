@@ -4,6 +4,9 @@
 
 #include <glm/geometric.hpp>
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -45,7 +48,19 @@ Scheduler::Scheduler(BatchCatalog& catalog, cache::TerminalSetCache& cache, Sche
         throw std::invalid_argument("prefetchSeconds must be finite and >= 0");
     if (!(options_.treeGeometricError >= 0.0) || !std::isfinite(options_.treeGeometricError))
         throw std::invalid_argument("treeGeometricError must be finite and >= 0");
-    for (uint32_t i = 0; i < options_.workers; ++i) threads_.emplace_back([this] { workerLoop(); });
+    for (uint32_t i = 0; i < backgroundThreads(); ++i) threads_.emplace_back([this] { workerLoop(); });
+}
+
+bool Scheduler::prefetchThread() const {
+    return options_.workers == 0 && options_.prefetchInBackground;
+}
+
+uint32_t Scheduler::backgroundThreads() const {
+    return options_.workers > 0 ? options_.workers : (prefetchThread() ? 1 : 0);
+}
+
+bool Scheduler::inUpdate(const Request& request) const {
+    return options_.workers == 0 && !(request.prefetch && prefetchThread());
 }
 
 Scheduler::~Scheduler() {
@@ -83,13 +98,21 @@ bool Scheduler::wantsTrees(double distance, const Camera& camera) const {
     return sse > options_.lod.maxScreenSpaceError;
 }
 
-bool Scheduler::requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue) {
+bool Scheduler::requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue,
+                                 FrameDecision& frame) {
     // With workers a set evicted to disk is read back by a worker, like one generated, so the
-    // frame never waits for the disk; without, the frame reads it itself.
+    // frame never waits for the disk; without, the frame reads it itself, through
+    // getOrGenerate where a prefetch thread may be reading the same set: it joins that read
+    // instead of making a second.
     const cache::BatchKey& key = catalog_.key(batch);
-    if (options_.workers > 0 ? bool(cache_.findInMemory(key)) : bool(cache_.find(key))) return true;
-    queue.push_back({batch, sse, prefetch});
-    return false;
+    const bool readsDisk = options_.workers == 0 && !prefetchThread();
+    std::shared_ptr<const grammar::TerminalSet> set = readsDisk ? cache_.find(key) : cache_.findInMemory(key);
+    if (!set) {
+        queue.push_back({batch, sse, prefetch});
+        return false;
+    }
+    if (!prefetch && prefetchThread()) frame.readySets.push_back(std::move(set));
+    return true;
 }
 
 FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
@@ -128,9 +151,11 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
                 if (isTreeBatch(b) && !decision.treesAsTerminals) continue;
                 const Busy state = busy(b);
                 if (state == Busy::Failed) continue;
-                if (state == Busy::Generating) {
+                // Without workers a visible batch is never left pending: one the background
+                // thread is prefetching is queued all the same, and its getOrGenerate joins it.
+                if (state == Busy::Generating && options_.workers > 0) {
                     decision.requested.push_back(b);
-                } else if (requestIfMissing(b, sse, false, queue)) {
+                } else if (requestIfMissing(b, sse, false, queue, frame)) {
                     decision.ready.push_back(b);
                 } else {
                     decision.requested.push_back(b);
@@ -150,7 +175,10 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
             const Frustum ahead = frustumOf(camera, predicted);
             const size_t before = queue.size();
             for (size_t i = 0; i < cells.size(); ++i) {
-                if (decisionOf[i] >= 0) continue; // already requested as visible
+                // A visible Terminals cell's batches are requested as visible already, but for
+                // its trees while they are billboards: those it will want as the camera nears.
+                const bool visible = decisionOf[i] >= 0;
+                if (visible && frame.cells[size_t(decisionOf[i])].treesAsTerminals) continue;
                 const auto [lo, hi] = boxOf(i);
                 const double distance = distanceToBox(predicted, lo, hi);
                 const double sse = screenSpaceError(distance, camera);
@@ -160,8 +188,8 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
                 const uint32_t count =
                     static_cast<uint32_t>(catalog_.index().batchesOf(cells[i].cell).size());
                 for (uint32_t b = first; b < first + count; ++b) {
-                    if (isTreeBatch(b) && !wantsTrees(distance, camera)) continue;
-                    if (busy(b) == Busy::No) requestIfMissing(b, sse, true, queue);
+                    if (isTreeBatch(b) ? !wantsTrees(distance, camera) : visible) continue;
+                    if (busy(b) == Busy::No) requestIfMissing(b, sse, true, queue, frame);
                 }
             }
             frame.prefetchRequests = static_cast<uint32_t>(queue.size() - before);
@@ -184,10 +212,11 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
     for (const Request& request : queue) {
         if (frame.started.size() >= cap || budgetSpent()) break;
         const cache::BatchKey& key = catalog_.key(request.batch);
-        if (options_.workers == 0) {
+        if (inUpdate(request)) {
             bool ok = true;
             try {
-                cache_.getOrGenerate(key, [&] { return catalog_.generate(request.batch); });
+                auto set = cache_.getOrGenerate(key, [&] { return catalog_.generate(request.batch); });
+                if (!request.prefetch && prefetchThread()) frame.readySets.push_back(std::move(set));
             } catch (const std::exception&) {
                 ok = false;
             }
@@ -208,7 +237,7 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
             {
                 // Only this thread adds jobs, so the count can only drop before the insert below.
                 std::lock_guard lock(mutex_);
-                if (inFlight_.size() >= 2 * size_t{options_.workers}) break;
+                if (inFlight_.size() >= 2 * size_t{backgroundThreads()}) break;
             }
             Job job{request.batch, key, catalog_.inputsOf(request.batch)};
             std::lock_guard lock(mutex_);
@@ -240,6 +269,14 @@ void Scheduler::run(Job job) {
 }
 
 void Scheduler::workerLoop() {
+    if (prefetchThread()) {
+        // The prefetch thread runs on what the frame leaves idle: at normal priority it took
+        // cores from the rasteriser's threads and slowed the median frame (about 5 % on two
+        // cores). A frame that needs a batch this thread holds waits for it, and so leaves it
+        // the core it needs.
+        sched_param param{};
+        pthread_setschedparam(pthread_self(), SCHED_IDLE, &param);
+    }
     for (;;) {
         std::unique_lock lock(mutex_);
         wake_.wait(lock, [&] { return stopping_ || !jobs_.empty(); });

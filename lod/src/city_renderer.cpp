@@ -112,6 +112,7 @@ bool CityRenderer::init(std::string& error) {
     cells::SchedulerOptions scheduling;
     scheduling.lod = options_.lod;
     scheduling.workers = options_.schedulerWorkers;
+    scheduling.prefetchInBackground = true; // with no workers; they prefetch themselves
     scheduling.maxBatchesPerFrame = options_.maxBatchesPerFrame;
     // Trees: geometry near the camera, billboards beyond; the reference draws every tree as
     // geometry and the forced coarse modes every tree as a billboard.

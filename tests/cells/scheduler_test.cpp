@@ -1,7 +1,7 @@
 // Scheduler decisions for scripted cameras on a small procedural city: which cells are seen,
 // at which LOD, in which order their batches are generated, that the hysteresis holds, that
-// prefetch runs ahead of a moving camera, that a worker pool never blocks update(), and that
-// the cache keeps its byte budget over a walk.
+// prefetch runs ahead of a moving camera (on a thread of its own too, changing no frame), that
+// a worker pool never blocks update(), and that the cache keeps its byte budget over a walk.
 #include "hexlod/cells/scheduler.h"
 
 #include <gtest/gtest.h>
@@ -228,6 +228,90 @@ TEST_F(SchedulerTest, PrefetchRequestsCellsAheadOfAMovingCamera) {
     EXPECT_EQ(with, without); // prefetch changes what is generated, never the LOD
     EXPECT_FALSE(cachedWithout);
     EXPECT_TRUE(cachedWith); // ready before the cell needed it
+}
+
+TEST_F(SchedulerTest, TreesOfAVisibleCellArePrefetchedBeforeTheyAreWanted) {
+    // A cell with trees: they are billboards (left out) until the camera is near.
+    const size_t buildingGrammars = catalog_.scene().buildingGrammars.size();
+    uint32_t treeBatch = catalog_.batchCount();
+    for (uint32_t b = 0; b < catalog_.batchCount() && treeBatch == catalog_.batchCount(); ++b)
+        if (catalog_.batch(b).grammar >= buildingGrammars) treeBatch = b;
+    ASSERT_LT(treeBatch, catalog_.batchCount());
+    const CellBounds& target = *catalog_.index().boundsOf(catalog_.batch(treeBatch).cell);
+    const auto firstFrameWantingTrees = [&](double prefetchSeconds, bool& cachedBefore) {
+        cache::TerminalSetCache cache{cache::CacheOptions{}};
+        SchedulerOptions o = options(0, prefetchSeconds);
+        o.treeGeometricError = 0.25; // trees wanted within about 120 m
+        Scheduler scheduler(catalog_, cache, o);
+        Camera camera = southOf(target, 600.0);
+        for (int frame = 0; frame < 60; ++frame) {
+            cachedBefore = cache.findInMemory(catalog_.key(treeBatch)) != nullptr;
+            const FrameDecision decision = scheduler.update(camera, frame * 1.0);
+            const CellDecision* cell = find(decision, target.cell);
+            EXPECT_NE(cell, nullptr);
+            if (cell && cell->treesAsTerminals) {
+                EXPECT_EQ(cell->lod, CellLod::Terminals);
+                return frame;
+            }
+            camera.position.y += 20.0; // 20 m/s
+        }
+        return -1;
+    };
+    bool cachedWithout = true, cachedWith = false;
+    const int without = firstFrameWantingTrees(0.0, cachedWithout);
+    const int with = firstFrameWantingTrees(3.0, cachedWith);
+    ASSERT_GT(without, 0);
+    EXPECT_EQ(with, without);
+    EXPECT_FALSE(cachedWithout);
+    EXPECT_TRUE(cachedWith); // read ahead while the cell drew its trees as billboards
+}
+
+TEST_F(SchedulerTest, APrefetchThreadChangesNoFrame) {
+    const CellBounds& target = middleCell();
+    cache::TerminalSetCache inFrameCache{cache::CacheOptions{}}, threadCache{cache::CacheOptions{}};
+    Scheduler inFrame(catalog_, inFrameCache, options(0, 3.0));
+    SchedulerOptions o = options(0, 3.0);
+    o.prefetchInBackground = true;
+    Scheduler withThread(catalog_, threadCache, o);
+    Camera camera = southOf(target, 3000.0);
+    uint32_t prefetchedByThread = 0;
+    for (int frame = 0; frame < 40; ++frame) {
+        const FrameDecision expected = inFrame.update(camera, frame * 1.0);
+        const FrameDecision got = withThread.update(camera, frame * 1.0);
+        EXPECT_TRUE(expected.readySets.empty());                  // only a prefetch thread's frames hold them
+        EXPECT_EQ(got.requestedBatches, 0u) << "frame " << frame; // nothing visible left pending
+        ASSERT_EQ(got.cells.size(), expected.cells.size()) << "frame " << frame;
+        size_t ready = 0;
+        for (size_t c = 0; c < got.cells.size(); ++c) {
+            EXPECT_EQ(got.cells[c].cell, expected.cells[c].cell);
+            EXPECT_EQ(got.cells[c].lod, expected.cells[c].lod);
+            std::vector<uint32_t> a = got.cells[c].ready, b = expected.cells[c].ready;
+            std::sort(a.begin(), a.end());
+            std::sort(b.begin(), b.end());
+            EXPECT_EQ(a, b) << "frame " << frame;
+            for (const uint32_t batch : a) {
+                // Each ready set is held by the decision: no insert can evict it meanwhile.
+                const auto set = threadCache.findInMemory(catalog_.key(batch));
+                ASSERT_NE(set, nullptr);
+                EXPECT_NE(std::find(got.readySets.begin(), got.readySets.end(), set), got.readySets.end());
+            }
+            ready += a.size();
+        }
+        EXPECT_EQ(got.readySets.size(), ready);
+        // What the thread was given is in the cache once it is done. Every other frame goes on
+        // at once, so that visible batches the thread still holds are joined, not left pending.
+        if (frame % 2 == 0) {
+            withThread.drain();
+            for (size_t i = got.started.size() - got.prefetchStarted; i < got.started.size(); ++i)
+                EXPECT_NE(threadCache.findInMemory(catalog_.key(got.started[i])), nullptr);
+        }
+        prefetchedByThread += got.prefetchStarted;
+        camera.position.y += 100.0;
+    }
+    EXPECT_GT(prefetchedByThread, 0u);
+    withThread.drain();
+    const cache::CacheStats stats = threadCache.stats();
+    EXPECT_EQ(stats.generations, stats.memoryEntries); // each batch generated once, by one thread
 }
 
 TEST_F(SchedulerTest, WorkersGenerateInTheBackgroundWithoutBlockingUpdate) {

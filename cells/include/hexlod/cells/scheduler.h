@@ -17,7 +17,8 @@
 //   are queued by sse, highest first. Then come prefetch requests: the camera position is
 //   extrapolated by its velocity (from the previous update) over prefetchSeconds, and the
 //   batches of cells that would be visible and switch to Terminals there are queued by their
-//   predicted sse. No other cell is ever generated.
+//   predicted sse, as are the tree batches of visible Terminals cells whose trees are
+//   billboards now but would be wanted there. No other cell is ever generated.
 // - At most maxBatchesPerFrame queued batches start per update (0: no cap), and none once
 //   maxMillisecondsPerFrame has passed since update() began (0: no time budget), though the
 //   first always starts so that a tiny budget still makes progress.
@@ -26,6 +27,12 @@
 //   pool of that many threads, each generating through the cache's getOrGenerate; update()
 //   never waits for them, and their sets show as ready in a later frame. To keep priorities
 //   fresh while the camera moves, no more than 2 * workers batches are in flight at once.
+// - workers == 0 with prefetchInBackground: visible batches are made ready inside update() as
+//   above, but prefetch requests go to one background thread (at most 2 in flight, at idle
+//   priority), which reads them from the disk tier or generates them while frames render, on
+//   the cores the frames leave idle. A visible batch the thread has in hand is waited for,
+//   not left pending, so a scripted camera still sees the same cells ready in every frame;
+//   only where the time goes changes.
 //
 // Readiness is checked with TerminalSetCache::find, which also marks visible sets as recently
 // used, so the LRU evicts what the camera no longer looks at first. A batch whose generation
@@ -43,6 +50,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -66,6 +74,8 @@ struct SchedulerOptions {
     double maxMillisecondsPerFrame = 0.0;
     uint32_t workers = 0;
     double prefetchSeconds = 1.0;
+    // workers == 0 only: prefetch on a background thread (see above); ignored with workers.
+    bool prefetchInBackground = false;
     // Every cell takes this LOD whatever its error: the all-LOD4 reference and the forced-LOD
     // renders of the error reports.
     std::optional<CellLod> forcedLod;
@@ -94,7 +104,10 @@ struct FrameDecision {
     uint32_t readyBatches = 0;
     uint32_t requestedBatches = 0; // of visible Terminals cells
     uint32_t prefetchRequests = 0; // missing batches of predicted cells, started or not
-    uint32_t inFlight = 0;         // workers > 0: batches being generated after this update
+    uint32_t inFlight = 0;         // batches queued or generating in the background after the update
+    // prefetchInBackground: the sets of every cell's ready batches, held while the decision is,
+    // so that the background thread's inserts cannot evict them before the frame draws them.
+    std::vector<std::shared_ptr<const grammar::TerminalSet>> readySets;
 };
 
 class Scheduler {
@@ -132,7 +145,12 @@ private:
     bool wantsTrees(double distance, const Camera& camera) const;
     double screenSpaceError(double distance, const Camera& camera) const;
     // Queues the batch unless the cache holds it; true when it does.
-    bool requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue);
+    bool requestIfMissing(uint32_t batch, double sse, bool prefetch, std::vector<Request>& queue,
+                          FrameDecision& frame);
+    bool prefetchThread() const; // workers == 0 with prefetchInBackground
+    uint32_t backgroundThreads() const;
+    // Whether update() itself reads or generates `request` (else a background thread does).
+    bool inUpdate(const Request& request) const;
     void run(Job job);
     void workerLoop();
 

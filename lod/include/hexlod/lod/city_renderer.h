@@ -54,7 +54,10 @@ struct CityRendererOptions {
     uint64_t volumeBudgetBytes = uint64_t(256) << 20; // base volume meshes
     double transitionBand = 0.15;                     // share of each LOD's range that blends into the next
     uint32_t parallaxIterations = 2;                  // LOD3
-    uint32_t schedulerWorkers = 0;   // 0: batches are generated in the frame that needs them (deterministic)
+    // 0: visible batches are read or generated in the frame that needs them, so every frame is
+    // complete and the same each run; the prefetch ahead of the camera runs on a thread beside
+    // the frames (SchedulerOptions::prefetchInBackground).
+    uint32_t schedulerWorkers = 0;
     uint32_t maxBatchesPerFrame = 0; // 0: no cap
     // Times every draw pass (FrameStats::passMs): where a frame's GL time goes. GL timestamps
     // where they time the GPU's work (GlContextInfo::gpuTimestamps); else glFinish after each
