@@ -3,6 +3,7 @@
 #include "hexlod/cells/frustum.h"
 
 #include <glm/geometric.hpp>
+#include <tbb/task_arena.h>
 
 #include <pthread.h>
 #include <sched.h>
@@ -277,6 +278,10 @@ void Scheduler::workerLoop() {
         sched_param param{};
         pthread_setschedparam(pthread_self(), SCHED_IDLE, &param);
     }
+    // Generation is parallel (TBB); the prefetch thread's runs in an arena of its own thread
+    // alone, so that all of it stays at idle priority rather than on TBB's workers.
+    std::optional<tbb::task_arena> alone;
+    if (prefetchThread()) alone.emplace(1);
     for (;;) {
         std::unique_lock lock(mutex_);
         wake_.wait(lock, [&] { return stopping_ || !jobs_.empty(); });
@@ -284,7 +289,10 @@ void Scheduler::workerLoop() {
         Job job = std::move(jobs_.front());
         jobs_.pop_front();
         lock.unlock();
-        run(std::move(job));
+        if (alone)
+            alone->execute([&] { run(std::move(job)); });
+        else
+            run(std::move(job));
     }
 }
 
