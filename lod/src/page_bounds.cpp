@@ -4,6 +4,8 @@
 #include "hexlod/lod/terminal_arena.h"
 
 #include <glm/geometric.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -96,35 +98,43 @@ bool pageReachesWithin(const glm::vec4& sphere, const glm::vec3& origin, float d
     return nearest <= 0.0f || nearest * nearest < distanceSquared;
 }
 
+// One page: records [first, first + count).
+PageBounds boundsOfPage(const grammar::TerminalSet& set, size_t first, size_t count) {
+    TerminalBounds terminal[kArenaPageRecords];
+    PageBounds page;
+    bool finite = true;
+    page.firstBuilding = page.lastBuilding = set.records[first].building;
+    for (size_t i = 0; i < count; ++i) {
+        const grammar::TerminalRecord& record = set.records[first + i];
+        terminal[i] = terminalBounds(record);
+        const glm::dvec4& sphere = terminal[i].sphere;
+        finite = finite && std::isfinite(sphere.x) && std::isfinite(sphere.y) && std::isfinite(sphere.z) &&
+                 std::isfinite(sphere.w) && std::isfinite(terminal[i].wallOffset);
+        page.firstBuilding = std::min(page.firstBuilding, record.building);
+        page.lastBuilding = std::max(page.lastBuilding, record.building);
+    }
+    setSphereAndBox(terminal, count, page);
+    if (finite)
+        setFaces(terminal, count, page);
+    else
+        page.sphere.w = std::numeric_limits<float>::infinity(); // never culled whole
+    return page;
+}
+
 } // namespace
 
 std::vector<PageBounds> pageBounds(const grammar::TerminalSet& set) {
     const size_t records = set.records.size();
-    std::vector<PageBounds> pages;
-    pages.reserve((records + kArenaPageRecords - 1) / kArenaPageRecords);
-    TerminalBounds terminal[kArenaPageRecords];
-    for (size_t first = 0; first < records; first += kArenaPageRecords) {
-        const size_t count = std::min<size_t>(kArenaPageRecords, records - first);
-        PageBounds page;
-        bool finite = true;
-        page.firstBuilding = page.lastBuilding = set.records[first].building;
-        for (size_t i = 0; i < count; ++i) {
-            const grammar::TerminalRecord& record = set.records[first + i];
-            terminal[i] = terminalBounds(record);
-            const glm::dvec4& sphere = terminal[i].sphere;
-            finite = finite && std::isfinite(sphere.x) && std::isfinite(sphere.y) &&
-                     std::isfinite(sphere.z) && std::isfinite(sphere.w) &&
-                     std::isfinite(terminal[i].wallOffset);
-            page.firstBuilding = std::min(page.firstBuilding, record.building);
-            page.lastBuilding = std::max(page.lastBuilding, record.building);
-        }
-        setSphereAndBox(terminal, count, page);
-        if (finite)
-            setFaces(terminal, count, page);
-        else
-            page.sphere.w = std::numeric_limits<float>::infinity(); // never culled whole
-        pages.push_back(page);
-    }
+    std::vector<PageBounds> pages((records + kArenaPageRecords - 1) / kArenaPageRecords);
+    // Pages are independent. A frame uploads new sets before it draws, while the rasteriser's
+    // threads are idle, so the pages are split across the cores (a large set is thousands).
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, pages.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t p = range.begin(); p != range.end(); ++p) {
+                const size_t first = p * kArenaPageRecords;
+                pages[p] = boundsOfPage(set, first, std::min<size_t>(kArenaPageRecords, records - first));
+            }
+        });
     return pages;
 }
 

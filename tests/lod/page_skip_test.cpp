@@ -117,6 +117,32 @@ bool backfaceCulled(const TerminalRecord& record, const glm::vec3& origin) {
     return classify(record, origin, shared::CullFrame{}) == HEXLOD_CULLED;
 }
 
+TEST(PageBoundsTest, EachPageOfALargeSetIsBoundedAsItsRecordsAloneAre) {
+    // Thousands of pages: the pages are computed in parallel, in chunks.
+    std::mt19937 random(11);
+    const TerminalSet set = buildingSet(random, 400, 5, 300.0f);
+    const std::vector<PageBounds> pages = pageBounds(set);
+    ASSERT_EQ(pages.size(), (set.records.size() + kArenaPageRecords - 1) / kArenaPageRecords);
+    ASSERT_GT(pages.size(), 1000u);
+    for (size_t p = 0; p < pages.size(); ++p) {
+        TerminalSet alone;
+        const size_t first = p * kArenaPageRecords;
+        alone.records.assign(set.records.begin() + first,
+                             set.records.begin() + std::min(set.records.size(), first + kArenaPageRecords));
+        const std::vector<PageBounds> one = pageBounds(alone);
+        ASSERT_EQ(one.size(), 1u);
+        const PageBounds &got = pages[p], &want = one[0];
+        EXPECT_EQ(got.sphere, want.sphere) << "page " << p;
+        EXPECT_EQ(got.boxMin, want.boxMin) << "page " << p;
+        EXPECT_EQ(got.boxMax, want.boxMax) << "page " << p;
+        ASSERT_EQ(got.faceCount, want.faceCount) << "page " << p;
+        for (uint32_t f = 0; f < got.faceCount; ++f) EXPECT_EQ(got.faces[f], want.faces[f]) << "page " << p;
+        EXPECT_EQ(got.firstBuilding, want.firstBuilding) << "page " << p;
+        EXPECT_EQ(got.lastBuilding, want.lastBuilding) << "page " << p;
+    }
+    EXPECT_TRUE(pageBounds(TerminalSet{}).empty());
+}
+
 TEST(PageBoundsTest, APageFacesAwayOnlyWhenTheCameraIsBehindEachOfItsWalls) {
     // One page: 40 windows on the south wall (y = -10) and 24 on the east wall (x = 10) of a
     // 20 m building, 2 m square and 0.5 m deep.
