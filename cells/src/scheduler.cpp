@@ -270,6 +270,7 @@ void Scheduler::run(Job job) {
 }
 
 void Scheduler::workerLoop() {
+    std::optional<tbb::task_arena> alone;
     if (prefetchThread()) {
         // The prefetch thread runs on what the frame leaves idle: at normal priority it took
         // cores from the rasteriser's threads and slowed the median frame (about 5 % on two
@@ -277,11 +278,10 @@ void Scheduler::workerLoop() {
         // the core it needs.
         sched_param param{};
         pthread_setschedparam(pthread_self(), SCHED_IDLE, &param);
+        // Generation is parallel (TBB): in an arena of this thread alone, all of it stays at
+        // idle priority rather than on TBB's workers.
+        alone.emplace(1);
     }
-    // Generation is parallel (TBB); the prefetch thread's runs in an arena of its own thread
-    // alone, so that all of it stays at idle priority rather than on TBB's workers.
-    std::optional<tbb::task_arena> alone;
-    if (prefetchThread()) alone.emplace(1);
     for (;;) {
         std::unique_lock lock(mutex_);
         wake_.wait(lock, [&] { return stopping_ || !jobs_.empty(); });
