@@ -50,6 +50,7 @@ void ServeSpeciesBakery::run() {
         auto [request, done] = std::move(queue_.front());
         queue_.pop_front();
         lock.unlock();
+        if (request.stillWanted && !request.stillWanted()) continue;
         std::string error = setupError;
         std::optional<server::SpeciesAsset> asset;
         try {

@@ -1,7 +1,8 @@
 // The bakery `hexlod serve` gives its service (server/species_bakery.h): one thread with its
 // own GL context, made when it starts, that bakes a species' impostor on the same tree
-// layout and store as the start's bake, one request after another, and hands back its served
-// files. Without a GL context every request fails with the reason, and the trees stay terminals.
+// layout and store as the start's bake, one request after another (dropping one whose values
+// no tree has by its turn, SpeciesRequest::stillWanted), and hands back its served files.
+// Without a GL context every request fails with the reason, and the trees stay terminals.
 #pragma once
 
 #include "city_session.h"

@@ -4,10 +4,12 @@
 //     for one building and for a whole grammar across the resident cells.
 //   serve_bench sizes --port P
 //     bytes per cell on the wire (encoded payloads) against in memory (decoded sets).
-//   serve_bench species --port P [--repeat N]
+//   serve_bench species --port P [--repeat N] [--burst B]
 //     tree edit to billboards: a cell's trees get a parameter value not used before, and the
 //     service bakes a species per value set they then have; POST to the first and to the last
-//     species event, and to the first species' albedo PNG fetched.
+//     species event, and to the first species' albedo PNG fetched. With a burst, B edits are
+//     posted back to back (a slider released again and again) and the times run from the
+//     last; species_per_edit counts every species announced for the burst.
 // Prints one JSON object. Timing is wall time on the client, loopback only.
 #include "hexlod/grammar/extruded_set_codec.h"
 #include "hexlod/grammar/terminal_set_codec.h"
@@ -40,6 +42,7 @@ struct Options {
     std::string grammar = "residential";
     int repeat = 30;
     int connections = 4;
+    int burst = 1; // species: edits posted back to back, timed from the last
 };
 
 double ms(Clock::duration d) {
@@ -205,9 +208,10 @@ Json measureSizes(const Options& o) {
 
 // The value of one sample line of /metrics ("name{labels} value"), or -1 when it is missing.
 double metricValue(http_client::Connection& c, const std::string& sample) {
-    const std::string text = c.get("/metrics").body;
-    const size_t at = text.find(sample + " ");
-    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + sample.size() + 1));
+    // At a line's start: a family's # HELP line names it too.
+    const std::string text = "\n" + c.get("/metrics").body;
+    const size_t at = text.find("\n" + sample + " ");
+    return at == std::string::npos ? -1.0 : std::stod(text.substr(at + sample.size() + 2));
 }
 
 Json measureSpecies(const Options& o) {
@@ -229,15 +233,20 @@ Json measureSpecies(const Options& o) {
     if (!events.next(std::chrono::seconds(5))) throw std::runtime_error("no hello event");
     std::vector<double> first, last, fetched, perEdit;
     for (int i = 0; i < o.repeat; ++i) {
-        // A value not used before, inside the declared range: from the journal's next seq, so
-        // that a second run on the same service does not repeat the first's.
-        const double lo = parameter["min"], hi = parameter["max"];
-        const double next = double(getJson(c, "/healthz")["seq"].get<uint64_t>() + 1);
-        const double value = lo + (hi - lo) * (0.3 + 0.4 * std::fmod(next * 0.6180339887, 1.0));
-        const std::string body = "{\"selector\":{\"cell\":" + cell.dump() + "},\"params\":{\"" +
-                                 parameter["name"].get<std::string>() + "\":" + std::to_string(value) + "}}";
-        const auto start = Clock::now();
-        if (c.post("/api/v1/edits", body).status != 200) throw std::runtime_error("edit refused: " + body);
+        Clock::time_point start;
+        for (int b = 0; b < o.burst; ++b) {
+            // A value not used before, inside the declared range: from the journal's next seq,
+            // so that a second run on the same service does not repeat the first's.
+            const double lo = parameter["min"], hi = parameter["max"];
+            const double next = double(getJson(c, "/healthz")["seq"].get<uint64_t>() + 1);
+            const double value = lo + (hi - lo) * (0.3 + 0.4 * std::fmod(next * 0.6180339887, 1.0));
+            const std::string body = "{\"selector\":{\"cell\":" + cell.dump() + "},\"params\":{\"" +
+                                     parameter["name"].get<std::string>() + "\":" + std::to_string(value) +
+                                     "}}";
+            start = Clock::now();
+            if (c.post("/api/v1/edits", body).status != 200)
+                throw std::runtime_error("edit refused: " + body);
+        }
         size_t species = 0;
         while (true) {
             const auto e = events.next(std::chrono::seconds(60));
@@ -265,7 +274,10 @@ Json measureSpecies(const Options& o) {
             {"median_species_per_edit", perEdit[perEdit.size() / 2]},
             {"post_to_first_species", summary(first)},
             {"post_to_first_species_png", summary(fetched)},
-            {"post_to_last_species", summary(last)}};
+            {"post_to_last_species", summary(last)},
+            // -1 from a service that does not count them
+            {"species_dropped_total", metricValue(c, "hexlod_tree_species_dropped_total")},
+            {"species_retired_total", metricValue(c, "hexlod_tree_species_retired_total")}};
 }
 
 } // namespace
@@ -274,7 +286,7 @@ int main(int argc, char** argv) {
     Options o;
     if (argc < 2) {
         std::cerr << "usage: serve_bench edits|sizes|species --port P [--building ID] [--grammar NAME] "
-                     "[--repeat N]\n";
+                     "[--repeat N] [--burst B]\n";
         return 2;
     }
     o.mode = argv[1];
@@ -290,6 +302,8 @@ int main(int argc, char** argv) {
             o.repeat = std::stoi(value);
         else if (flag == "--connections")
             o.connections = std::stoi(value);
+        else if (flag == "--burst")
+            o.burst = std::max(1, std::stoi(value));
         else {
             std::cerr << "serve_bench: unknown option " << flag << "\n";
             return 2;

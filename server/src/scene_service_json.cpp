@@ -133,7 +133,8 @@ Json SceneService::speciesEntryJson(uint32_t index) const {
 // The species whose billboards the service serves, in the order of their impostors' layers.
 Json SceneService::speciesJson() const {
     Json out = Json::array();
-    for (uint32_t s = 0; s < species_.size(); ++s) out.push_back(speciesEntryJson(s));
+    for (uint32_t s = 0; s < species_.size(); ++s)
+        if (!species_[s].retired) out.push_back(speciesEntryJson(s));
     return out;
 }
 
@@ -144,6 +145,7 @@ void SceneService::attachShapeAssets(ShapeAssets assets) {
         std::lock_guard lock(speciesMutex_);
         species_ = std::move(assets_.species); // from here on the service's, and growing
         assets_.species.clear();
+        startSpecies_ = species_.size();
         for (const SpeciesAsset& s : species_)
             speciesStates_[{s.grammar, s.parameters}] = SpeciesState::Served;
     }

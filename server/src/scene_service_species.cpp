@@ -3,6 +3,8 @@
 
 #include "hexlod/grammar/terminal_set_codec.h"
 
+#include <map>
+
 namespace hexlod::server {
 
 std::optional<SpeciesAsset> SceneService::species(uint32_t index) const {
@@ -25,6 +27,7 @@ void SceneService::requestMissingSpecies(const std::vector<cells::KeyChange>& ch
     std::vector<SpeciesRequest> requests;
     {
         std::lock_guard lock(speciesMutex_);
+        bool retiredOnce = false;
         for (const cells::KeyChange& change : changes) {
             const cells::Batch& batch = catalog_->batch(change.batch);
             if (!catalog_->index().isTreeGrammar(batch.grammar)) continue;
@@ -33,25 +36,68 @@ void SceneService::requestMissingSpecies(const std::vector<cells::KeyChange>& ch
                 const std::vector<float>& values = trees.buildings[member].parameters;
                 if (speciesStates_.count({batch.grammar, values})) continue;
                 // Past the cap, trees of new values stay terminals: an endless run of edits
-                // must not grow the served atlases without bound.
-                if (speciesRequested_ >= kMaxEditedSpecies) break;
+                // must not grow the served atlases without bound. Species no tree has any
+                // more make room first (once: the scan reads every tree).
+                if (editedHeld_ >= kMaxEditedSpecies && !retiredOnce) {
+                    retiredOnce = true;
+                    retireUnusedSpecies();
+                }
+                if (editedHeld_ >= kMaxEditedSpecies) break;
                 speciesStates_[{batch.grammar, values}] = SpeciesState::Baking;
-                ++speciesRequested_;
+                ++editedHeld_;
                 // Named by its values, so that the same values baked after a restart find
                 // their atlas in the impostor store under the same name.
                 const uint64_t digest = grammar::checksum64(std::span(
                     reinterpret_cast<const uint8_t*>(values.data()), values.size() * sizeof(float)));
                 requests.push_back(
-                    {batch.grammar, values, trees.name + " edited " + cache::hexDigest(digest)});
+                    {batch.grammar, values, trees.name + " edited " + cache::hexDigest(digest), {}});
             }
         }
     }
     for (SpeciesRequest& request : requests) {
-        const SpeciesRequest key{request.grammar, request.parameters, {}};
+        const SpeciesRequest key{request.grammar, request.parameters, {}, {}};
+        request.stillWanted = [this, key] { return speciesStillWanted({key.grammar, key.parameters}); };
         bakery_->bake(std::move(request),
                       [this, key](std::optional<SpeciesAsset> asset, const std::string& error) {
                           addBakedSpecies(key, std::move(asset), error);
                       });
+    }
+}
+
+bool SceneService::treesHaveValues(uint32_t grammar, const std::vector<float>& values) const {
+    for (const grammar::BuildingInput& tree : catalog_->grammar(grammar).buildings)
+        if (tree.parameters == values) return true;
+    return false;
+}
+
+bool SceneService::speciesStillWanted(const std::pair<uint32_t, std::vector<float>>& values) {
+    std::shared_lock catalogLock(catalogMutex_);
+    if (treesHaveValues(values.first, values.second)) return true;
+    std::lock_guard lock(speciesMutex_);
+    // Forgotten rather than failed: an undo back to these values asks for them again.
+    speciesStates_.erase(values);
+    --editedHeld_;
+    ++speciesDropped_;
+    return false;
+}
+
+void SceneService::retireUnusedSpecies() {
+    // The served edited species (at most the cap) by grammar and values, crossed off as trees
+    // have them: one pass over each grammar's trees, no copy of their values.
+    std::map<uint32_t, std::map<std::vector<float>, size_t>> unused;
+    for (size_t s = startSpecies_; s < species_.size(); ++s)
+        if (!species_[s].retired) unused[species_[s].grammar].emplace(species_[s].parameters, s);
+    for (auto& [g, ofGrammar] : unused)
+        for (const grammar::BuildingInput& tree : catalog_->grammar(g).buildings)
+            ofGrammar.erase(tree.parameters);
+    for (const auto& [g, ofGrammar] : unused) {
+        for (const auto& [values, s] : ofGrammar) {
+            speciesStates_.erase({g, values});
+            species_[s].retired = true;
+            species_[s].impostor = {}; // its files' bytes: what the cap bounds
+            --editedHeld_;
+            ++speciesRetired_;
+        }
     }
 }
 
@@ -63,6 +109,7 @@ void SceneService::addBakedSpecies(const SpeciesRequest& request, std::optional<
         SpeciesState& state = speciesStates_[{request.grammar, request.parameters}];
         if (!asset) {
             state = SpeciesState::Failed; // not asked for again: the same values fail the same way
+            --editedHeld_;                // and it holds no atlas
             event = {{"error", error}, {"grammar", request.grammar}, {"tree_species", species_.size()}};
         } else {
             state = SpeciesState::Served;
@@ -87,6 +134,18 @@ void SceneService::renderSpeciesMetrics(PrometheusText& out) const {
                                       {SpeciesState::Baking, "baking"},
                                       {SpeciesState::Failed, "failed"}})
         out.sample("hexlod_tree_species", {{"state", name}}, static_cast<double>(counts[state]));
+    uint64_t dropped = 0, retired = 0;
+    {
+        std::lock_guard lock(speciesMutex_);
+        dropped = speciesDropped_;
+        retired = speciesRetired_;
+    }
+    out.family("hexlod_tree_species_dropped_total", "counter",
+               "Species bakes dropped before they began: no tree had their values any more.");
+    out.sample("hexlod_tree_species_dropped_total", {}, static_cast<double>(dropped));
+    out.family("hexlod_tree_species_retired_total", "counter",
+               "Species baked for edits and retired at the cap: no tree had their values any more.");
+    out.sample("hexlod_tree_species_retired_total", {}, static_cast<double>(retired));
 }
 
 } // namespace hexlod::server

@@ -145,6 +145,9 @@ void ServiceApi::speciesImpostor(const RequestContext& c, Respond respond) const
         return respond(errorReply(404, "the scene has " + std::to_string(service_.speciesCount()) +
                                            " tree species with impostors; there is no species " +
                                            std::to_string(*species)));
+    if (asset->retired)
+        return respond(errorReply(410, "tree species " + std::to_string(*species) +
+                                           " was retired: no tree has its values any more"));
     const std::string suffix(file.substr(16));
     respond(impostorFile(c.request, asset->impostor, *key, suffix,
                          [&] { return service_.speciesImpostorUrl(*species, suffix.c_str()); }));

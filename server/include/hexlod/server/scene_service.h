@@ -119,8 +119,10 @@ public:
     std::optional<SpeciesAsset> species(uint32_t index) const;
     size_t speciesCount() const;
     // Bakes a species for trees that an edit or undo leaves with values no served species has
-    // (species_bakery.h), at most kMaxEditedSpecies of them. Attach after the shape assets, and
-    // only when they serve species.
+    // (species_bakery.h), at most kMaxEditedSpecies of them held at once, baking or served.
+    // A bake whose values no tree has any more by its turn is dropped; at the cap, species
+    // baked for edits that no tree has the values of any more are retired to make room.
+    // Attach after the shape assets, and only when they serve species.
     void attachSpeciesBakery(std::unique_ptr<SpeciesBakery> bakery);
     static constexpr size_t kMaxEditedSpecies = 64;
 
@@ -168,7 +170,16 @@ private:
     nlohmann::json speciesJson() const;                    // under speciesMutex_
     nlohmann::json speciesEntryJson(uint32_t index) const; // under speciesMutex_
     // Asks the bakery for every value set of the changed tree batches that no species has.
+    // Under catalogMutex_ held exclusively.
     void requestMissingSpecies(const std::vector<cells::KeyChange>& changes);
+    // Retires the served species baked for edits whose values no tree has; under
+    // catalogMutex_ and speciesMutex_.
+    void retireUnusedSpecies();
+    // Whether a tree of `grammar` has these values now; under catalogMutex_.
+    bool treesHaveValues(uint32_t grammar, const std::vector<float>& values) const;
+    // The bakery's stillWanted for a requested value set: false, and its place freed, when no
+    // tree has the values any more.
+    bool speciesStillWanted(const std::pair<uint32_t, std::vector<float>>& values);
     void addBakedSpecies(const SpeciesRequest& request, std::optional<SpeciesAsset> asset,
                          const std::string& error);
     void renderSpeciesMetrics(PrometheusText& out) const;
@@ -214,7 +225,9 @@ private:
     // retried): the value is its state.
     enum class SpeciesState { Served, Baking, Failed };
     std::map<std::pair<uint32_t, std::vector<float>>, SpeciesState> speciesStates_;
-    size_t speciesRequested_ = 0; // bakes asked for since start, against kMaxEditedSpecies
+    size_t startSpecies_ = 0; // the attached ones: never retired
+    size_t editedHeld_ = 0;   // baking or served and not retired, against kMaxEditedSpecies
+    uint64_t speciesDropped_ = 0, speciesRetired_ = 0; // since start, for /metrics
     // Last, so that it is destroyed first: its thread calls addBakedSpecies.
     std::unique_ptr<SpeciesBakery> bakery_;
 };

@@ -55,6 +55,9 @@ struct SpeciesAsset {
     uint32_t grammar = 0; // a tree grammar, scene order
     std::vector<float> parameters;
     ImpostorAsset impostor; // layer: the species index
+    // A species baked for an edit that no tree has the values of any more, dropped to make
+    // room for new ones: its files are gone (410) and the scene no longer lists it.
+    bool retired = false;
 };
 
 struct ShapeAssets {

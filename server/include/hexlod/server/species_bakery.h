@@ -19,6 +19,11 @@ struct SpeciesRequest {
     uint32_t grammar = 0; // a tree grammar, scene order
     std::vector<float> parameters;
     std::string name;
+    // Asked on the bakery's thread just before the bake: false drops the request without
+    // calling its `done` (edits since gave its trees other values, as a slider released again
+    // and again does; baking every value in between would keep the last one waiting). Empty:
+    // always baked.
+    std::function<bool()> stillWanted;
 };
 
 class SpeciesBakery {
