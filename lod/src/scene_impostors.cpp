@@ -2,10 +2,13 @@
 #include "hexlod/lod/scene_impostors.h"
 #include "hexlod/grammar/expander.h"
 #include "hexlod/grammar/rule_reachability.h"
+#include "hexlod/render/mesh_deviation.h"
+#include "hexlod/render/procedural_meshes.h"
 
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace hexlod::lod {
@@ -82,7 +85,8 @@ std::string SceneImpostorReport::summary() const {
 
 impostor::BakeGeometry treeGeometry(const grammar::CompiledGrammar& grammar,
                                     const std::vector<float>& parameters, uint64_t seed,
-                                    const render::TerminalMeshLibrary& meshes, uint32_t grammarIndex) {
+                                    const render::TerminalMeshLibrary& meshes, uint32_t grammarIndex,
+                                    float sampleSpacing) {
     grammar::ExpansionSettings settings;
     settings.seed = seed;
     grammar::BuildingExpander expander(grammar, settings);
@@ -92,6 +96,13 @@ impostor::BakeGeometry treeGeometry(const grammar::CompiledGrammar& grammar,
     tree.parameters = parameters;
     grammar::BuildingOutput output;
     expander.expand(tree, output);
+    // Each part shape's coarser mesh and how far it strays in unit scope space (infinite: it
+    // drops a colour or a shading, never good enough).
+    struct Coarse {
+        std::optional<render::TerminalMesh> mesh;
+        glm::vec3 deviation{0.0f};
+    };
+    std::map<const render::TerminalMesh*, Coarse> coarseOf;
     impostor::BakeGeometry geometry;
     geometry.hash = hashBytes(0xcbf29ce484222325ull, output.terminals.data(),
                               output.terminals.size() * sizeof(grammar::TerminalRecord));
@@ -99,8 +110,17 @@ impostor::BakeGeometry treeGeometry(const grammar::CompiledGrammar& grammar,
         const grammar::Terminal t = grammar::unpackTerminal(record);
         const render::TerminalMesh* mesh = meshes.find(grammarIndex, t.shape);
         if (!mesh) continue;
-        geometry.hash = hashBytes(geometry.hash, &mesh->contentHash, sizeof mesh->contentHash);
         const glm::vec3 scope(t.size, t.depthRatio * std::min(t.size.x, t.size.y));
+        if (sampleSpacing > 0.0f) {
+            auto [it, inserted] = coarseOf.try_emplace(mesh);
+            if (inserted) {
+                it->second.mesh = render::buildCoarserProceduralMesh(grammar.shapes.at(t.shape), *mesh);
+                if (it->second.mesh) it->second.deviation = render::meshDeviation(*mesh, *it->second.mesh);
+            }
+            const Coarse& coarse = it->second;
+            if (coarse.mesh && glm::length(coarse.deviation * scope) <= sampleSpacing) mesh = &*coarse.mesh;
+        }
+        geometry.hash = hashBytes(geometry.hash, &mesh->contentHash, sizeof mesh->contentHash);
         const glm::mat3 rotation = glm::mat3_cast(t.orientation);
         const uint32_t base = uint32_t(geometry.vertices.size());
         for (render::MeshVertex v : mesh->vertices) {
@@ -229,8 +249,15 @@ bool bakeTreeSpecies(impostor::ImpostorBaker& baker, const impostor::ImpostorSto
     report = {};
     report.name = species.name;
     report.grammar = species.grammarIndex;
-    const impostor::BakeGeometry geometry =
-        treeGeometry(*species.grammar, species.parameters, species.seed, meshes, species.grammarIndex);
+    // The spacing of the bake's samples, from the full tree's sphere (the views frame it).
+    impostor::ImpostorAtlas frame;
+    impostor::measureGeometry(
+        treeGeometry(*species.grammar, species.parameters, species.seed, meshes, species.grammarIndex),
+        frame);
+    const float sampleSpacing =
+        2.0f * frame.radius / float(layout.innerResolution() * impostor::ImpostorBaker::kSupersampling);
+    const impostor::BakeGeometry geometry = treeGeometry(*species.grammar, species.parameters, species.seed,
+                                                         meshes, species.grammarIndex, sampleSpacing);
     const uint64_t key = impostor::bakeKey(geometry.hash, glm::vec3(1.0f), layout);
     const bool made = bakeOrLoad(baker, store, geometry, key, layout, atlas, report);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,11 +1,13 @@
 // What a scene bakes: the shapes its grammars emit and nothing else, a species impostor per
-// tree species only when it has trees, loads from the store instead of baking again, and a
-// corrupt file baked again.
+// tree species only when it has trees (from the coarse parts its samples cannot tell apart),
+// loads from the store instead of baking again, and a corrupt file baked again.
 #include "../render/gl_fixture.h"
 #include "test_city.h"
 
 #include "hexlod/lod/scene_impostors.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -78,6 +80,60 @@ TEST_F(SceneImpostorsTest, EverySpeciesWithTreesGetsOneFullSphereImpostor) {
         EXPECT_EQ(atlas.shape.rfind("tree:", 0), 0u);
         EXPECT_GT(atlas.boundsMax.z, 1.0f); // a tree stands up from its base
     }
+}
+
+TEST_F(SceneImpostorsTest, ASpeciesIsBakedFromTheCoarsePartsItsSamplesCannotTellApart) {
+    testing::TestCity city = testing::makeCity(20, 60);
+    const scene::BuiltScene& built = city.catalog->scene();
+    ASSERT_FALSE(built.treeGrammars.empty());
+    const scene::GrammarBuildings& trees = built.treeGrammars[0];
+    const uint32_t grammarIndex = uint32_t(built.buildingGrammars.size()); // tree grammars come after
+    const auto geometry = [&](float spacing) {
+        return treeGeometry(trees.grammar, trees.buildings.at(0).parameters, built.config.seed, *city.meshes,
+                            grammarIndex, spacing);
+    };
+    const impostor::BakeGeometry full = geometry(0.0f);
+    // A spacing no coarse mesh fits under changes nothing; a metre takes every coarse part.
+    const impostor::BakeGeometry fine = geometry(1e-6f);
+    EXPECT_EQ(fine.hash, full.hash);
+    EXPECT_EQ(fine.indices, full.indices);
+    const impostor::BakeGeometry coarsest = geometry(1.0f);
+    EXPECT_NE(coarsest.hash, full.hash) << "the bake's key must tell the two apart";
+    EXPECT_LT(2 * coarsest.indices.size(), full.indices.size());
+
+    // At the spacing bakeTreeSpecies bakes at, the views are those of the full parts.
+    const impostor::ViewLayout layout = smallOptions().treeLayout;
+    impostor::ImpostorAtlas frame;
+    impostor::measureGeometry(full, frame);
+    const float spacing =
+        2.0f * frame.radius / float(layout.innerResolution() * impostor::ImpostorBaker::kSupersampling);
+    const impostor::BakeGeometry used = geometry(spacing);
+    EXPECT_LT(used.indices.size(), full.indices.size());
+    impostor::ImpostorBaker baker;
+    std::string error;
+    ASSERT_TRUE(baker.init(error)) << error;
+    impostor::ImpostorAtlas fromFull, fromUsed;
+    ASSERT_TRUE(baker.bake(full, layout, fromFull, error)) << error;
+    ASSERT_TRUE(baker.bake(used, layout, fromUsed, error)) << error;
+    EXPECT_NEAR(fromUsed.radius, fromFull.radius, 0.02f * fromFull.radius);
+    // Colour times coverage, so that a texel the coarse parts leave empty counts as black.
+    double squared = 0.0, coverage = 0.0;
+    const std::vector<float>& a = fromFull.albedo.pixels;
+    const std::vector<float>& b = fromUsed.albedo.pixels;
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); i += 4) {
+        for (size_t c = 0; c < 3; ++c) {
+            const double d = double(a[i + c]) * a[i + 3] - double(b[i + c]) * b[i + 3];
+            squared += d * d;
+        }
+        coverage += std::abs(double(a[i + 3]) - double(b[i + 3]));
+    }
+    const double texels = double(a.size() / 4);
+    const double psnr = 10.0 * std::log10(1.0 / (squared / (3.0 * texels)));
+    std::printf("%zu of %zu indices at %.3f m spacing: %.1f dB, mean coverage difference %.4f\n",
+                used.indices.size(), full.indices.size(), spacing, psnr, coverage / texels);
+    EXPECT_GT(psnr, 40.0);
+    EXPECT_LT(coverage / texels, 0.01);
 }
 
 TEST_F(SceneImpostorsTest, TheStoreSkipsRebakesAndRecoversACorruptFile) {

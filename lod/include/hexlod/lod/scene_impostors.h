@@ -83,8 +83,13 @@ bool bakeTreeSpecies(impostor::ImpostorBaker& baker, const impostor::ImpostorSto
 
 // The geometry of one tree of a species: its terminal set expanded at the origin, every
 // terminal's mesh placed in tree space (x east, y north, z up, the trunk base at the origin).
+// A part whose shape has a coarser mesh (render::buildCoarserProceduralMesh) that moves no
+// point of it by more than `sampleSpacing` metres (meshDeviation over the part's scope) is
+// placed coarse: a bake whose samples lie that far apart cannot tell them apart, and the
+// bake's time is its triangles. 0: every part at its full mesh.
 impostor::BakeGeometry treeGeometry(const grammar::CompiledGrammar& grammar,
                                     const std::vector<float>& parameters, uint64_t seed,
-                                    const render::TerminalMeshLibrary& meshes, uint32_t grammarIndex);
+                                    const render::TerminalMeshLibrary& meshes, uint32_t grammarIndex,
+                                    float sampleSpacing = 0.0f);
 
 } // namespace hexlod::lod
