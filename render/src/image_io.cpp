@@ -1,15 +1,16 @@
-// PNG through stb_image_write, EXR through OpenEXR's scanline API.
+// PNG through png_encoder.h, EXR through OpenEXR's scanline API.
 #include "hexlod/render/image_io.h"
+#include "hexlod/render/png_encoder.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <vector>
 
 namespace hexlod::render {
@@ -35,26 +36,7 @@ bool pngSamples(const Image& image, PngTransfer transfer, std::vector<unsigned c
 
 const char* kPngShapes = "only non-empty RGBA or single-channel images can be written as PNG";
 
-void appendToVector(void* context, void* data, int size) {
-    auto* out = static_cast<std::vector<uint8_t>*>(context);
-    out->insert(out->end(), static_cast<const uint8_t*>(data), static_cast<const uint8_t*>(data) + size);
-}
-
 } // namespace
-
-bool writePng(const std::string& path, const Image& image, std::string& error, PngTransfer transfer) {
-    std::vector<unsigned char> bytes;
-    if (!pngSamples(image, transfer, bytes)) {
-        error = path + ": " + kPngShapes;
-        return false;
-    }
-    if (!stbi_write_png(path.c_str(), int(image.width), int(image.height), int(image.channels), bytes.data(),
-                        int(image.width * image.channels))) {
-        error = path + ": cannot write the PNG file";
-        return false;
-    }
-    return true;
-}
 
 bool encodePng(const Image& image, PngTransfer transfer, std::vector<uint8_t>& out, std::string& error) {
     std::vector<unsigned char> bytes;
@@ -62,10 +44,25 @@ bool encodePng(const Image& image, PngTransfer transfer, std::vector<uint8_t>& o
         error = kPngShapes;
         return false;
     }
-    out.clear();
-    if (!stbi_write_png_to_func(appendToVector, &out, int(image.width), int(image.height),
-                                int(image.channels), bytes.data(), int(image.width * image.channels))) {
+    out = encodePngSamples(bytes, image.width, image.height, image.channels);
+    if (out.empty()) {
         error = "cannot encode the PNG";
+        return false;
+    }
+    return true;
+}
+
+bool writePng(const std::string& path, const Image& image, std::string& error, PngTransfer transfer) {
+    std::vector<uint8_t> png;
+    if (!encodePng(image, transfer, png, error)) {
+        error = path + ": " + error;
+        return false;
+    }
+    std::ofstream file(path, std::ios::binary);
+    file.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+    file.close();
+    if (!file) {
+        error = path + ": cannot write the PNG file";
         return false;
     }
     return true;

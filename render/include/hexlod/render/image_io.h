@@ -1,4 +1,4 @@
-// Images to and from files: PNG for people (8-bit sRGB through stb_image_write) and OpenEXR
+// Images to and from files: PNG for people (8-bit sRGB, png_encoder.h) and OpenEXR
 // for data (half floats, linear, lossless ZIP compression).
 #pragma once
 
