@@ -232,12 +232,12 @@ Json measureSpecies(const Options& o) {
     http_client::EventStreamReader events("127.0.0.1", o.port, "/api/v1/events");
     if (!events.next(std::chrono::seconds(5))) throw std::runtime_error("no hello event");
     std::vector<double> first, last, fetched, perEdit;
+    const double lo = parameter["min"], hi = parameter["max"];
     for (int i = 0; i < o.repeat; ++i) {
         Clock::time_point start;
         for (int b = 0; b < o.burst; ++b) {
             // A value not used before, inside the declared range: from the journal's next seq,
             // so that a second run on the same service does not repeat the first's.
-            const double lo = parameter["min"], hi = parameter["max"];
             const double next = double(getJson(c, "/healthz")["seq"].get<uint64_t>() + 1);
             const double value = lo + (hi - lo) * (0.3 + 0.4 * std::fmod(next * 0.6180339887, 1.0));
             const std::string body = "{\"selector\":{\"cell\":" + cell.dump() + "},\"params\":{\"" +

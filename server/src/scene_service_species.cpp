@@ -28,6 +28,7 @@ void SceneService::requestMissingSpecies(const std::vector<cells::KeyChange>& ch
     {
         std::lock_guard lock(speciesMutex_);
         bool retiredOnce = false;
+        size_t held = editedHeld();
         for (const cells::KeyChange& change : changes) {
             const cells::Batch& batch = catalog_->batch(change.batch);
             if (!catalog_->index().isTreeGrammar(batch.grammar)) continue;
@@ -38,13 +39,14 @@ void SceneService::requestMissingSpecies(const std::vector<cells::KeyChange>& ch
                 // Past the cap, trees of new values stay terminals: an endless run of edits
                 // must not grow the served atlases without bound. Species no tree has any
                 // more make room first (once: the scan reads every tree).
-                if (editedHeld_ >= kMaxEditedSpecies && !retiredOnce) {
+                if (held >= kMaxEditedSpecies && !retiredOnce) {
                     retiredOnce = true;
                     retireUnusedSpecies();
+                    held = editedHeld();
                 }
-                if (editedHeld_ >= kMaxEditedSpecies) break;
+                if (held >= kMaxEditedSpecies) break;
                 speciesStates_[{batch.grammar, values}] = SpeciesState::Baking;
-                ++editedHeld_;
+                ++held;
                 // Named by its values, so that the same values baked after a restart find
                 // their atlas in the impostor store under the same name.
                 const uint64_t digest = grammar::checksum64(std::span(
@@ -64,6 +66,13 @@ void SceneService::requestMissingSpecies(const std::vector<cells::KeyChange>& ch
     }
 }
 
+size_t SceneService::editedHeld() const {
+    size_t held = 0;
+    for (const auto& [values, state] : speciesStates_) held += state == SpeciesState::Baking;
+    for (size_t s = startSpecies_; s < species_.size(); ++s) held += !species_[s].retired;
+    return held;
+}
+
 bool SceneService::treesHaveValues(uint32_t grammar, const std::vector<float>& values) const {
     for (const grammar::BuildingInput& tree : catalog_->grammar(grammar).buildings)
         if (tree.parameters == values) return true;
@@ -76,7 +85,6 @@ bool SceneService::speciesStillWanted(const std::pair<uint32_t, std::vector<floa
     std::lock_guard lock(speciesMutex_);
     // Forgotten rather than failed: an undo back to these values asks for them again.
     speciesStates_.erase(values);
-    --editedHeld_;
     ++speciesDropped_;
     return false;
 }
@@ -95,8 +103,6 @@ void SceneService::retireUnusedSpecies() {
             speciesStates_.erase({g, values});
             species_[s].retired = true;
             species_[s].impostor = {}; // its files' bytes: what the cap bounds
-            --editedHeld_;
-            ++speciesRetired_;
         }
     }
 }
@@ -109,7 +115,6 @@ void SceneService::addBakedSpecies(const SpeciesRequest& request, std::optional<
         SpeciesState& state = speciesStates_[{request.grammar, request.parameters}];
         if (!asset) {
             state = SpeciesState::Failed; // not asked for again: the same values fail the same way
-            --editedHeld_;                // and it holds no atlas
             event = {{"error", error}, {"grammar", request.grammar}, {"tree_species", species_.size()}};
         } else {
             state = SpeciesState::Served;
@@ -124,9 +129,12 @@ void SceneService::addBakedSpecies(const SpeciesRequest& request, std::optional<
 
 void SceneService::renderSpeciesMetrics(PrometheusText& out) const {
     std::map<SpeciesState, size_t> counts;
+    uint64_t dropped = 0, retired = 0;
     {
         std::lock_guard lock(speciesMutex_);
         for (const auto& [values, state] : speciesStates_) ++counts[state];
+        dropped = speciesDropped_;
+        for (const SpeciesAsset& species : species_) retired += species.retired;
     }
     out.family("hexlod_tree_species", "gauge",
                "Tree species by state: served, being baked for an edit, or failed to bake.");
@@ -134,12 +142,6 @@ void SceneService::renderSpeciesMetrics(PrometheusText& out) const {
                                       {SpeciesState::Baking, "baking"},
                                       {SpeciesState::Failed, "failed"}})
         out.sample("hexlod_tree_species", {{"state", name}}, static_cast<double>(counts[state]));
-    uint64_t dropped = 0, retired = 0;
-    {
-        std::lock_guard lock(speciesMutex_);
-        dropped = speciesDropped_;
-        retired = speciesRetired_;
-    }
     out.family("hexlod_tree_species_dropped_total", "counter",
                "Species bakes dropped before they began: no tree had their values any more.");
     out.sample("hexlod_tree_species_dropped_total", {}, static_cast<double>(dropped));

@@ -1,5 +1,5 @@
 // PNG encoding: what a decoder reads back is the samples given, for RGBA and grey, sizes down to
-// one pixel and content that makes every row filter win somewhere; mismatched sizes are refused.
+// one pixel; content whose rows take several different filters; mismatched sizes refused.
 #include "hexlod/render/png_encoder.h"
 
 #include <gtest/gtest.h>

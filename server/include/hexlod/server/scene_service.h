@@ -175,6 +175,9 @@ private:
     // Retires the served species baked for edits whose values no tree has; under
     // catalogMutex_ and speciesMutex_.
     void retireUnusedSpecies();
+    // Species baked for edits held now, against kMaxEditedSpecies: baking, or served and not
+    // retired. Under speciesMutex_.
+    size_t editedHeld() const;
     // Whether a tree of `grammar` has these values now; under catalogMutex_.
     bool treesHaveValues(uint32_t grammar, const std::vector<float>& values) const;
     // The bakery's stillWanted for a requested value set: false, and its place freed, when no
@@ -225,9 +228,8 @@ private:
     // retried): the value is its state.
     enum class SpeciesState { Served, Baking, Failed };
     std::map<std::pair<uint32_t, std::vector<float>>, SpeciesState> speciesStates_;
-    size_t startSpecies_ = 0; // the attached ones: never retired
-    size_t editedHeld_ = 0;   // baking or served and not retired, against kMaxEditedSpecies
-    uint64_t speciesDropped_ = 0, speciesRetired_ = 0; // since start, for /metrics
+    size_t startSpecies_ = 0;     // the attached ones: never retired
+    uint64_t speciesDropped_ = 0; // bakes dropped at their turn since start, for /metrics
     // Last, so that it is destroyed first: its thread calls addBakedSpecies.
     std::unique_ptr<SpeciesBakery> bakery_;
 };
