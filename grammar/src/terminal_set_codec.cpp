@@ -81,7 +81,10 @@ uint64_t checksum64(std::span<const uint8_t> bytes, uint64_t seed) {
 
 std::vector<uint8_t> encodeTerminalSet(const TerminalSet& set, int zstdLevel) {
     const size_t n = set.records.size();
-    std::vector<uint8_t> body(n * sizeof(TerminalRecord));
+    const detail::ScratchRelease release;
+    // Every byte is written below: a zero-filled vector cost more than the transform.
+    const std::span<uint8_t> body(detail::encoderBody(n * sizeof(TerminalRecord)),
+                                  n * sizeof(TerminalRecord));
     uint32_t previous[kDeltaColumns] = {};
     size_t shape = 0, endOfRun = set.countPerShape.empty() ? n : set.countPerShape[0];
     for (size_t i = 0; i < n; ++i) {

@@ -47,26 +47,47 @@ private:
     uint8_t* data_ = nullptr;
     size_t capacity_ = 0;
 };
-Scratch& scratch() {
+// Three per thread: what a decoder decompresses into, what an encoder lays its body out in,
+// and the frame it compresses that into (a payload's own bytes are then copied at their size).
+Scratch& decodeScratch() {
     thread_local Scratch s;
     return s;
+}
+Scratch& bodyScratch() {
+    thread_local Scratch s;
+    return s;
+}
+Scratch& frameScratch() {
+    thread_local Scratch s;
+    return s;
+}
+
+void releaseIfLarge(Scratch& s) {
+    if (s.capacity() > kKeptScratchBytes) s.release();
 }
 
 } // namespace
 
 size_t compressFrame(std::span<const uint8_t> body, int level, std::vector<uint8_t>& out, size_t offset) {
-    out.resize(offset + ZSTD_compressBound(body.size()));
+    Scratch& frame = frameScratch();
+    frame.reserve(ZSTD_compressBound(body.size()));
     ZSTD_CCtx* cctx = contexts().compress.get();
     ZSTD_CCtx_reset(cctx, ZSTD_reset_session_and_parameters);
     ZSTD_CCtx_setParameter(cctx, ZSTD_c_compressionLevel, level);
-    const size_t bytes =
-        ZSTD_compress2(cctx, out.data() + offset, out.size() - offset, body.data(), body.size());
+    const size_t bytes = ZSTD_compress2(cctx, frame.data(), frame.capacity(), body.data(), body.size());
     // The bound makes the only failure a bad level, which zstd clamps instead of failing.
     const size_t frameBytes = ZSTD_isError(bytes) ? 0 : bytes;
-    out.resize(offset + frameBytes);
-    // The bound is about the raw size: a payload kept in a cache must not hold that much.
-    out.shrink_to_fit();
+    // Sized once, to what a payload kept in a cache needs: neither the bound nor zeros.
+    out.reserve(offset + frameBytes);
+    out.resize(offset);
+    out.insert(out.end(), frame.data(), frame.data() + frameBytes);
+    releaseIfLarge(frame);
     return frameBytes;
+}
+
+uint8_t* encoderBody(size_t bytes) {
+    bodyScratch().reserve(bytes);
+    return bodyScratch().data();
 }
 
 // One byte of room beyond the expected size tells "the frame holds more" apart from "the
@@ -82,7 +103,7 @@ bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::spa
     ZSTD_DCtx* dctx = contexts().decompress.get();
     ZSTD_DCtx_reset(dctx, ZSTD_reset_session_only);
     const uint64_t limit = expected + 1;
-    Scratch& body = scratch();
+    Scratch& body = decodeScratch();
     // Room the scratch already has is used at once; beyond it the body grows only with what
     // the frame delivers.
     size_t room = static_cast<size_t>(std::min<uint64_t>(
@@ -119,11 +140,12 @@ bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::spa
 }
 
 ScratchRelease::~ScratchRelease() {
-    if (scratch().capacity() > kKeptScratchBytes) scratch().release();
+    releaseIfLarge(decodeScratch());
+    releaseIfLarge(bodyScratch());
 }
 
-size_t threadScratchBytes() {
-    return scratch().capacity();
+ThreadScratch threadScratch() {
+    return {decodeScratch().capacity(), bodyScratch().capacity(), frameScratch().capacity()};
 }
 
 } // namespace hexlod::grammar::detail

@@ -31,8 +31,15 @@ inline uint32_t unzigzag(uint32_t z) {
 }
 
 // Compresses `body` into one zstd frame appended to `out` after its first `offset` bytes
-// (`out` is resized to offset + frame size). Returns the frame size.
+// (`out` is resized to offset + frame size, its first bytes kept). Returns the frame size.
+// The frame is made in this thread's scratch and copied: a vector sized to zstd's bound was
+// zero-filled and page-faulted in at the raw body's size for every payload.
 size_t compressFrame(std::span<const uint8_t> body, int level, std::vector<uint8_t>& out, size_t offset);
+
+// This thread's buffer for an encoder to lay its body out in before compressFrame: at least
+// `bytes` long, uninitialised, valid until the thread's next call. An encoder declares a
+// ScratchRelease first.
+uint8_t* encoderBody(size_t bytes);
 
 // Decompresses one frame that must decode to exactly `expected` bytes and fill `frame`
 // completely. `body` then views the bytes, in this thread's scratch buffer: valid until the
@@ -41,8 +48,9 @@ size_t compressFrame(std::span<const uint8_t> body, int level, std::vector<uint8
 bool decompressFrame(std::span<const uint8_t> frame, uint64_t expected, std::span<const uint8_t>& body,
                      std::string& error);
 
-// The most scratch a thread keeps between payloads. A decoder declares a ScratchRelease
-// before it decompresses, which releases a larger body's buffer when the decoder returns.
+// The most scratch a thread keeps between payloads, per buffer. A decoder declares a
+// ScratchRelease before it decompresses, and an encoder before it asks for encoderBody: it
+// releases a larger body's buffer when the codec returns.
 constexpr size_t kKeptScratchBytes = size_t(32) << 20; // the thesis city's largest body is 27 MB
 struct ScratchRelease {
     ScratchRelease() = default;
@@ -50,7 +58,13 @@ struct ScratchRelease {
     ScratchRelease& operator=(const ScratchRelease&) = delete;
     ~ScratchRelease();
 };
-// The bytes of scratch this thread holds now (what a ScratchRelease leaves it is testable).
-size_t threadScratchBytes();
+// The bytes of scratch this thread holds now, per buffer (what a ScratchRelease leaves it is
+// testable).
+struct ThreadScratch {
+    size_t decode = 0; // decompressFrame's output
+    size_t body = 0;   // encoderBody
+    size_t frame = 0;  // compressFrame's output
+};
+ThreadScratch threadScratch();
 
 } // namespace hexlod::grammar::detail

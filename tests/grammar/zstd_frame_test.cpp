@@ -1,6 +1,6 @@
-// The zstd frame helper both payload codecs decode through: exact sizes, the errors it names,
-// and the per-thread scratch it decodes into, which a body over kKeptScratchBytes must not
-// leave behind.
+// The zstd frame helper both payload codecs go through: exact sizes, the errors it names,
+// and the per-thread scratch it decodes, lays bodies out and compresses into, which a body
+// over kKeptScratchBytes must not leave behind.
 #include "zstd_frame.h"
 
 #include <gtest/gtest.h>
@@ -59,23 +59,53 @@ TEST(ZstdFrame, ABodyOverTheKeptScratchIsReleasedAndASmallOneKept) {
         ASSERT_TRUE(decompressFrame(smallFrame, small.size(), decoded, error)) << error;
         EXPECT_TRUE(std::equal(decoded.begin(), decoded.end(), small.begin(), small.end()));
     }
-    const size_t kept = threadScratchBytes();
+    const size_t kept = threadScratch().decode;
     EXPECT_GE(kept, small.size());
     EXPECT_LE(kept, kKeptScratchBytes);
     {
         ScratchRelease release;
         ASSERT_TRUE(decompressFrame(largeFrame, large.size(), decoded, error)) << error;
         // The view is good until the scope ends: the decoders copy out of it before then.
-        EXPECT_GT(threadScratchBytes(), kKeptScratchBytes);
+        EXPECT_GT(threadScratch().decode, kKeptScratchBytes);
         EXPECT_TRUE(std::equal(decoded.begin(), decoded.end(), large.begin(), large.end()));
     }
-    EXPECT_EQ(threadScratchBytes(), 0u) << "a body over the kept size is not held between payloads";
+    EXPECT_EQ(threadScratch().decode, 0u) << "a body over the kept size is not held between payloads";
     {
         ScratchRelease release;
         ASSERT_TRUE(decompressFrame(smallFrame, small.size(), decoded, error)) << error;
         EXPECT_TRUE(std::equal(decoded.begin(), decoded.end(), small.begin(), small.end()));
     }
-    EXPECT_GT(threadScratchBytes(), 0u);
+    EXPECT_GT(threadScratch().decode, 0u);
+}
+
+TEST(ZstdFrame, EncodersScratchOverTheKeptSizeIsReleasedAndThePayloadSizedOnce) {
+    const std::vector<uint8_t> large = patterned(kKeptScratchBytes + (size_t(1) << 20));
+    std::vector<uint8_t> frame(16, 7);
+    compressFrame(large, 1, frame, 16);
+    EXPECT_EQ(threadScratch().frame, 0u) << "a frame bound over the kept size is not held";
+    EXPECT_EQ(frame.capacity(), frame.size());
+    EXPECT_EQ(frame[15], 7) << "the bytes before the frame are kept";
+    std::span<const uint8_t> decoded;
+    std::string error;
+    {
+        ScratchRelease release;
+        ASSERT_TRUE(decompressFrame(std::span(frame).subspan(16), large.size(), decoded, error)) << error;
+        EXPECT_TRUE(std::equal(decoded.begin(), decoded.end(), large.begin(), large.end()));
+    }
+    compressFrame(patterned(4096), 1, frame, 0);
+    EXPECT_GT(threadScratch().frame, 0u);
+    EXPECT_LE(threadScratch().frame, kKeptScratchBytes);
+    {
+        ScratchRelease release;
+        encoderBody(large.size());
+        EXPECT_GE(threadScratch().body, large.size());
+    }
+    EXPECT_EQ(threadScratch().body, 0u);
+    {
+        ScratchRelease release;
+        encoderBody(4096);
+    }
+    EXPECT_GE(threadScratch().body, 4096u);
 }
 
 } // namespace
