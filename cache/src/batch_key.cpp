@@ -30,21 +30,23 @@ std::string hexDigest(uint64_t digest) {
     return text;
 }
 
+uint64_t hashBuildingInput(const grammar::BuildingInput& b) {
+    uint64_t h = combineKey(b.id, b.parameters.size());
+    for (float value : b.parameters) h = combineKey(h, std::bit_cast<uint32_t>(value));
+    h = combineKey(h, b.footprint.size());
+    for (const glm::dvec2& p : b.footprint) {
+        h = combineKey(h, std::bit_cast<uint64_t>(p.x));
+        h = combineKey(h, std::bit_cast<uint64_t>(p.y));
+    }
+    return combineKey(h, std::bit_cast<uint64_t>(b.baseElevation));
+}
+
 uint64_t hashBatchParameters(std::span<const grammar::BuildingInput> buildings, uint64_t sceneSeed) {
     // (id, hash of the building) pairs sorted by both: the order of the input cannot leak
     // into the key, not even when ids repeat.
     std::vector<std::pair<uint32_t, uint64_t>> perBuilding;
     perBuilding.reserve(buildings.size());
-    for (const grammar::BuildingInput& b : buildings) {
-        uint64_t h = combineKey(b.id, b.parameters.size());
-        for (float value : b.parameters) h = combineKey(h, std::bit_cast<uint32_t>(value));
-        h = combineKey(h, b.footprint.size());
-        for (const glm::dvec2& p : b.footprint) {
-            h = combineKey(h, std::bit_cast<uint64_t>(p.x));
-            h = combineKey(h, std::bit_cast<uint64_t>(p.y));
-        }
-        perBuilding.emplace_back(b.id, combineKey(h, std::bit_cast<uint64_t>(b.baseElevation)));
-    }
+    for (const grammar::BuildingInput& b : buildings) perBuilding.emplace_back(b.id, hashBuildingInput(b));
     std::sort(perBuilding.begin(), perBuilding.end());
     uint64_t h = combineKey(sceneSeed, perBuilding.size());
     for (const auto& [id, buildingHash] : perBuilding) h = combineKey(combineKey(h, id), buildingHash);

@@ -5,9 +5,11 @@
 // and the extruded set is encoded into its tier at once: a cell's extruded and terminal sets
 // cost one expansion. The decoded tier keeps terminal sets only, so an extruded request whose
 // terminal set is already decoded (or on disk) expands again: the price of not doubling the
-// decoded tier's memory for a set that is only ever sent, never read.
+// decoded tier's memory for a set that is only ever sent, never read. An edited batch whose
+// last set is still decoded is spliced instead: only the buildings the edit changed expand.
 #include "hexlod/server/scene_service.h"
 
+#include "hexlod/grammar/batch_splice.h"
 #include "hexlod/grammar/extruded_set_codec.h"
 #include "hexlod/grammar/terminal_set_codec.h"
 
@@ -90,6 +92,31 @@ PayloadBytes SceneService::storeExtruded(uint32_t batch, const cache::BatchKey& 
     return bytes;
 }
 
+std::optional<grammar::TerminalSet> SceneService::splice(uint32_t batch, const cache::BatchKey& key,
+                                                         std::span<const grammar::BuildingInput> inputs,
+                                                         PayloadBytes& extruded) {
+    const std::optional<SpliceBases::Plan> plan = spliceBases_.plan(batch, key, inputs, kMaxSplicedShare);
+    if (!plan) return std::nullopt;
+    const cache::TerminalSetCache::SetPtr base = decoded_.findInMemory(plan->base);
+    if (!base) return std::nullopt;
+    std::vector<grammar::BuildingInput> changed;
+    changed.reserve(plan->changed.size());
+    for (const uint32_t i : plan->changed) changed.push_back(inputs[i]);
+    const grammar::BatchResult part = catalog_->expand(batch, changed, key);
+    if (part.failed) return std::nullopt; // the whole batch's expansion reports it
+    grammar::TerminalSet set = grammar::spliceTerminals(*base, part.terminals, plan->ids);
+    if (set.records.size() > grammar::ExpansionLimits{}.maxTerminalsPerBatch) return std::nullopt;
+    set.header.key = key.digest();
+    if (const PayloadBytes old = extrudedPayloads_.peek(plan->base)) {
+        grammar::ExtrudedSetHeader header;
+        grammar::ExtrudedSet oldSet;
+        std::string error;
+        if (grammar::decodeExtrudedSet(*old, header, oldSet, error))
+            extruded = storeExtruded(batch, key, grammar::spliceExtruded(oldSet, part.extruded, plan->ids));
+    }
+    return set;
+}
+
 PayloadOutcome SceneService::produce(PayloadKind kind, uint32_t batch, const cache::BatchKey& key) {
     PayloadCache& tier = kind == PayloadKind::TerminalSet ? terminalPayloads_ : extrudedPayloads_;
     // A job of the other kind may have made it while this one waited.
@@ -101,11 +128,16 @@ PayloadOutcome SceneService::produce(PayloadKind kind, uint32_t batch, const cac
         inputs = catalog_->inputsOf(batch);
     }
     const auto start = std::chrono::steady_clock::now();
-    bool expanded = false;
+    bool expanded = false, spliced = false;
     PayloadBytes extruded;
-    const auto expand = [&] {
+    const auto expand = [&](bool maySplice) {
         expanded = true;
         ++expansions_;
+        if (std::optional<grammar::TerminalSet> set =
+                maySplice ? splice(batch, key, inputs, extruded) : std::nullopt) {
+            spliced = true;
+            return std::move(*set);
+        }
         grammar::BatchResult result = catalog_->expand(batch, inputs, key);
         if (result.failed) {
             std::lock_guard lock(failedMutex_);
@@ -117,16 +149,22 @@ PayloadOutcome SceneService::produce(PayloadKind kind, uint32_t batch, const cac
         extruded = storeExtruded(batch, key, result.extruded);
         return std::move(result.terminals);
     };
-    const cache::TerminalSetCache::SetPtr set = decoded_.getOrGenerate(key, expand);
+    const cache::TerminalSetCache::SetPtr set = decoded_.getOrGenerate(key, [&] { return expand(true); });
+    spliceBases_.remember(batch, key, inputs);
     if (kind == PayloadKind::TerminalSet) {
         auto bytes = std::make_shared<const std::vector<uint8_t>>(
             grammar::encodeTerminalSet(*set, options_.zstdLevel));
         terminalPayloads_.insert(key, bytes);
-        metrics_.recordGeneration(expanded ? "terminal_set" : "terminal_set_encode", secondsSince(start));
+        metrics_.recordGeneration(spliced    ? "terminal_set_spliced"
+                                  : expanded ? "terminal_set"
+                                             : "terminal_set_encode",
+                                  secondsSince(start));
         return {std::move(bytes), 200, {}, {}};
     }
     if (!extruded) extruded = extrudedPayloads_.peek(key); // made by the expansion this one waited for
-    if (!extruded) expand(); // the decoded tier had the terminals; only an expansion gives the extruded set
+    // The decoded tier had the terminals, or they were spliced without an extruded set to
+    // splice into: only a whole expansion gives the extruded set.
+    if (!extruded) expand(false);
     metrics_.recordGeneration("extruded_set", secondsSince(start));
     return {std::move(extruded), 200, {}, {}};
 }

@@ -1,8 +1,11 @@
 // Batch expansion must be byte-identical whatever the thread count or input order, and a
-// parameter change on one building must change only that building's terminals.
+// parameter change on one building must change only that building's terminals, so that an
+// edited batch can be spliced (batch_splice.h) instead of expanded whole.
 #include "test_support.h"
 
 #include "hexlod/grammar/batch_expander.h"
+#include "hexlod/grammar/batch_splice.h"
+#include "hexlod/grammar/extruded_set_codec.h"
 #include "hexlod/scene/demo_footprints.h"
 
 #include <gtest/gtest.h>
@@ -112,6 +115,50 @@ TEST(Determinism, OneBuildingsParametersChangeOnlyItsTerminals) {
         std::memcmp(othersBefore.data(), othersAfter.data(), othersBefore.size() * sizeof(TerminalRecord)),
         0);
     EXPECT_GT(ofBuilding(after.terminals, 23, true).size(), ofBuilding(before.terminals, 23, true).size());
+}
+
+// Each case changes some buildings' floors (20 adds storeys, 1 removes every balcony) and
+// splices an expansion of them alone into the batch expanded before.
+TEST(Determinism, SplicingChangedBuildingsGivesTheWholeExpansionsBytes) {
+    const CompiledGrammar g = test::compileOrFail(kGrammar);
+    const std::vector<BuildingInput> buildings = demoBuildings(g, 60);
+    const BatchResult before = expandWithThreads(g, buildings, 2);
+    const int balcony = g.findShape("balcony");
+    ASSERT_GE(balcony, 0);
+    ASSERT_GT(before.terminals.countPerShape.at(size_t(balcony)), 0u);
+    const std::vector<std::pair<std::vector<uint32_t>, float>> cases = {
+        {{0}, 20.0f}, {{23}, 20.0f}, {{59}, 20.0f}, {{5, 6, 40}, 1.0f}, {{0, 31, 59}, 20.0f}};
+    for (const auto& [ids, floors] : cases) {
+        SCOPED_TRACE("buildings " + std::to_string(ids.front()) + ".." + std::to_string(ids.back()));
+        std::vector<BuildingInput> after = buildings, changed;
+        DiagnosticList d;
+        for (const uint32_t id : ids) {
+            after[id].parameters = resolveParameters(g, {{"floors", floors}}, d);
+            changed.push_back(after[id]);
+        }
+        const BatchResult whole = expandWithThreads(g, after, 2);
+        const BatchResult part = expandWithThreads(g, changed, 2);
+        EXPECT_TRUE(sameBytes(whole.terminals, spliceTerminals(before.terminals, part.terminals, ids)));
+        const ExtrudedSetHeader header;
+        EXPECT_EQ(encodeExtrudedSet(header, whole.extruded),
+                  encodeExtrudedSet(header, spliceExtruded(before.extruded, part.extruded, ids)));
+        EXPECT_NE(whole.terminals.countPerShape, before.terminals.countPerShape);
+    }
+}
+
+TEST(Determinism, SplicingABuildingThatExpandsToNothingDropsIt) {
+    const CompiledGrammar g = test::compileOrFail(kGrammar);
+    std::vector<BuildingInput> buildings = demoBuildings(g, 12);
+    const BatchResult before = expandWithThreads(g, buildings, 1);
+    buildings[4].footprint = {{0.0, 0.0}, {1.0, 0.0}}; // no area: skipped, with no terminals
+    const BatchResult whole = expandWithThreads(g, buildings, 1);
+    const BatchResult part = expandWithThreads(g, {buildings[4]}, 1);
+    ASSERT_TRUE(part.terminals.records.empty());
+    const uint32_t ids[] = {4};
+    EXPECT_TRUE(sameBytes(whole.terminals, spliceTerminals(before.terminals, part.terminals, ids)));
+    EXPECT_EQ(encodeExtrudedSet({}, whole.extruded),
+              encodeExtrudedSet({}, spliceExtruded(before.extruded, part.extruded, ids)));
+    EXPECT_LT(whole.extruded.buildings.size(), before.extruded.buildings.size());
 }
 
 TEST(Determinism, DuplicateBuildingIdsAreReportedNotMerged) {

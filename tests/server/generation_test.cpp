@@ -1,5 +1,6 @@
 // Content generation on demand: one expansion per missing batch however many ask at once,
-// one expansion for a batch's terminal and extruded sets together, and the bounded queue.
+// one expansion for a batch's terminal and extruded sets together, edited buildings spliced
+// into their batch, and the bounded queue.
 #include "live_server.h"
 
 #include "hexlod/server/generation_pool.h"
@@ -79,6 +80,57 @@ TEST(Generation, AnExtrudedSetFirstThenItsTerminalSetCostsOneExpansion) {
     const std::string metrics = live.get("/metrics").body;
     EXPECT_NE(metrics.find("hexlod_generations_total{kind=\"terminal_set_encode\"} 1\n"), std::string::npos);
     EXPECT_NE(metrics.find("hexlod_cache_hits_total{tier=\"decoded\"} 1\n"), std::string::npos);
+}
+
+// Two buildings of one batch with four or more, by id.
+std::vector<int> twoBuildingsOfABatch(const LiveServer& live) {
+    for (const Json& batch : buildingBatches(live)) {
+        if (batch["members"].get<int>() < 4) continue;
+        std::vector<int> ids;
+        for (int id = 0; id < 40 && ids.size() < 2; ++id)
+            if (live.getJson("/api/v1/buildings/" + std::to_string(id))["batch"]["key"] == batch["key"])
+                ids.push_back(id);
+        return ids;
+    }
+    return {};
+}
+
+// Edits of buildings whose batch was served expand those buildings alone, spliced into the
+// batch's last set (its extruded set too); a service that never saw the batch expands it
+// whole, and serves the same bytes.
+TEST(Generation, EditedBuildingsAreExpandedAloneAndSplicedIntoTheirBatch) {
+    LiveServer live;
+    const std::vector<int> ids = twoBuildingsOfABatch(live);
+    ASSERT_EQ(ids.size(), 2u);
+    const Json batch = live.getJson("/api/v1/buildings/" + std::to_string(ids[0]))["batch"];
+    ASSERT_EQ(live.get(batch["terminal_set"]).status, 200);
+    ASSERT_EQ(live.get(batch["extruded_set"]).status, 200);
+    const std::string edits[] = {
+        R"({"selector":{"buildings":[)" + std::to_string(ids[0]) + R"(]},"params":{"floor_h":3.4}})",
+        R"({"selector":{"buildings":[)" + std::to_string(ids[1]) + R"(]},"params":{"floors":9}})"};
+    for (size_t round = 0; round < 2; ++round) {
+        const auto reply = live.post("/api/v1/edits", edits[round]);
+        ASSERT_EQ(reply.status, 200) << reply.body;
+        const Json change = Json::parse(reply.body)["changed"][0];
+        LiveServer fresh; // the edits so far, on a batch it never served
+        for (size_t r = 0; r <= round; ++r) ASSERT_EQ(fresh.post("/api/v1/edits", edits[r]).status, 200);
+        for (const char* kind : {"terminal_set", "extruded_set"}) {
+            const auto spliced = live.get(change[kind]), whole = fresh.get(change[kind]);
+            ASSERT_EQ(spliced.status, 200) << kind;
+            EXPECT_EQ(spliced.body, whole.body) << kind << " after edit " << round + 1;
+        }
+        EXPECT_EQ(live.service().expansions(), round + 2); // the batch, then each edit's building
+        EXPECT_NE(fresh.get("/metrics").body.find("hexlod_generations_total{kind=\"terminal_set\"} 1\n"),
+                  std::string::npos);
+    }
+    const std::string metrics = live.get("/metrics").body;
+    EXPECT_NE(metrics.find("hexlod_generations_total{kind=\"terminal_set_spliced\"} 2\n"), std::string::npos)
+        << metrics;
+    // An undo goes back to a key served before: nothing expands.
+    const auto undo = live.post("/api/v1/edits/undo", "");
+    ASSERT_EQ(undo.status, 200) << undo.body;
+    EXPECT_EQ(live.get(Json::parse(undo.body)["changed"][0]["terminal_set"]).status, 200);
+    EXPECT_EQ(live.service().expansions(), 3u);
 }
 
 TEST(Generation, EveryBatchOfTheSceneServesBothPayloads) {

@@ -40,5 +40,7 @@ struct BatchKeyHash {
 // taken in id order, so the input order does not matter. Pass resolved parameter vectors
 // (resolveParameters): an empty vector and the explicit defaults expand alike but hash apart.
 uint64_t hashBatchParameters(std::span<const grammar::BuildingInput> buildings, uint64_t sceneSeed = 0);
+// One building's part of it: its id, parameter values, footprint and base elevation.
+uint64_t hashBuildingInput(const grammar::BuildingInput& building);
 
 } // namespace hexlod::cache

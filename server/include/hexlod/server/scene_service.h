@@ -25,6 +25,7 @@
 #include "hexlod/server/payload_cache.h"
 #include "hexlod/server/shape_assets.h"
 #include "hexlod/server/species_bakery.h"
+#include "hexlod/server/splice_bases.h"
 
 #include <nlohmann/json.hpp>
 
@@ -164,6 +165,15 @@ private:
     nlohmann::json changeReply(const char* op, uint64_t seq, nlohmann::json changed) const;
     PayloadOutcome produce(PayloadKind kind, uint32_t batch, const cache::BatchKey& key);
     PayloadBytes storeExtruded(uint32_t batch, const cache::BatchKey& key, const grammar::ExtrudedSet& set);
+    // `key`'s terminal set spliced into the batch's last one, when that is still decoded in
+    // memory: only the buildings whose inputs differ are expanded (splice_bases.h). Stores
+    // the extruded set the same way when the last one's payload is cached, into `extruded`.
+    // None: expand the whole batch.
+    std::optional<grammar::TerminalSet> splice(uint32_t batch, const cache::BatchKey& key,
+                                               std::span<const grammar::BuildingInput> inputs,
+                                               PayloadBytes& extruded);
+    // Beyond this share of a batch's buildings changed, the whole batch is expanded.
+    static constexpr double kMaxSplicedShare = 0.5;
     PayloadOutcome staleOutcome(PayloadKind kind, uint32_t batch) const;
     nlohmann::json staticSummary() const;
     nlohmann::json shapeJson(uint32_t grammar, uint32_t shape) const;
@@ -195,6 +205,7 @@ private:
     uint64_t decodedBudget_ = 0;
     cache::TerminalSetCache decoded_;
     PayloadCache terminalPayloads_, extrudedPayloads_;
+    SpliceBases spliceBases_;
     GenerationPool pool_;
     EventHub events_;
     Metrics metrics_;
