@@ -1,11 +1,12 @@
 // The service's small parts on their own: target parsing, edit bodies, the payload LRU, the
-// rate limiter, the event hub and the Prometheus text.
+// rate limiter, the event hub, the Prometheus text and the splice bases.
 #include "hexlod/server/edit_request.h"
 #include "hexlod/server/event_hub.h"
 #include "hexlod/server/http_target.h"
 #include "hexlod/server/metrics.h"
 #include "hexlod/server/payload_cache.h"
 #include "hexlod/server/rate_limiter.h"
+#include "hexlod/server/splice_bases.h"
 #include "hexlod/server/static_files.h"
 
 #include <gtest/gtest.h>
@@ -186,6 +187,66 @@ TEST(Metrics, PrometheusTextHasCumulativeBucketsAndEscapedLabels) {
     EXPECT_NE(out.find("x_seconds_bucket{route=\"GET /a\\\"b\",le=\"0.005\"} 2\n"), std::string::npos) << out;
     EXPECT_NE(out.find("x_seconds_bucket{route=\"GET /a\\\"b\",le=\"+Inf\"} 3\n"), std::string::npos) << out;
     EXPECT_NE(out.find("x_seconds_count{route=\"GET /a\\\"b\"} 3\n"), std::string::npos) << out;
+}
+
+std::vector<grammar::BuildingInput> tenBuildings() {
+    std::vector<grammar::BuildingInput> out(10);
+    for (uint32_t i = 0; i < 10; ++i) {
+        out[i].id = 100 + 3 * i;
+        out[i].footprint = {{0.0, 0.0}, {10.0, 0.0}, {10.0, 10.0}};
+        out[i].parameters = {1.0f, float(i)};
+    }
+    return out;
+}
+
+cache::BatchKey keyOf(uint64_t parameters, uint64_t grammar = 9) {
+    cache::BatchKey key;
+    key.grammarHash = grammar;
+    key.parametersHash = parameters;
+    return key;
+}
+
+TEST(SpliceBases, APlanNamesExactlyTheBuildingsThatDiffer) {
+    SpliceBases bases;
+    std::vector<grammar::BuildingInput> inputs = tenBuildings();
+    EXPECT_FALSE(bases.plan(4, keyOf(2), inputs, 0.5)) << "no base yet";
+    bases.remember(4, keyOf(1), inputs);
+    EXPECT_FALSE(bases.plan(4, keyOf(1), inputs, 0.5)) << "the base itself";
+    std::reverse(inputs.begin(), inputs.end()); // the order of the inputs does not matter
+    inputs[2].parameters[0] = 2.0f;             // id 121
+    inputs[7].baseElevation = 0.5;              // id 106
+    const auto plan = bases.plan(4, keyOf(2), inputs, 0.5);
+    ASSERT_TRUE(plan);
+    EXPECT_EQ(plan->base, keyOf(1));
+    EXPECT_EQ(plan->ids, (std::vector<uint32_t>{106, 121}));
+    EXPECT_EQ(plan->changed, (std::vector<uint32_t>{7, 2}));
+    EXPECT_FALSE(bases.plan(5, keyOf(2), inputs, 0.5)) << "another batch";
+    EXPECT_FALSE(bases.plan(4, keyOf(2, 8), inputs, 0.5)) << "another grammar";
+    EXPECT_FALSE(bases.plan(4, keyOf(2), inputs, 0.1)) << "more than the share changed";
+    EXPECT_FALSE(bases.plan(4, keyOf(2), tenBuildings(), 0.5)) << "nothing changed";
+}
+
+TEST(SpliceBases, OtherOrRepeatedBuildingIdsHaveNoPlan) {
+    SpliceBases bases;
+    std::vector<grammar::BuildingInput> inputs = tenBuildings();
+    bases.remember(0, keyOf(1), inputs);
+    std::vector<grammar::BuildingInput> other = inputs;
+    other[3].id = 1;
+    EXPECT_FALSE(bases.plan(0, keyOf(2), other, 0.5));
+    other = inputs;
+    other.pop_back();
+    EXPECT_FALSE(bases.plan(0, keyOf(2), other, 0.5));
+    std::vector<grammar::BuildingInput> repeated = inputs;
+    repeated[4].id = repeated[5].id;
+    bases.remember(0, keyOf(3), repeated);
+    repeated[4].parameters[0] = 5.0f;
+    EXPECT_FALSE(bases.plan(0, keyOf(4), repeated, 0.5));
+    // A later base replaces the earlier one.
+    bases.remember(0, keyOf(5), inputs);
+    inputs[0].parameters[1] = 7.0f;
+    const auto plan = bases.plan(0, keyOf(6), inputs, 0.5);
+    ASSERT_TRUE(plan);
+    EXPECT_EQ(plan->base, keyOf(5));
 }
 
 TEST(StaticFiles, ContentTypesAndEtagMatching) {
