@@ -22,7 +22,7 @@ TerminalSetCache::~TerminalSetCache() = default;
 TerminalSetCache::SetPtr TerminalSetCache::findInMemoryLocked(const BatchKey& key) {
     const auto it = entries_.find(key);
     if (it == entries_.end()) return nullptr;
-    lru_.splice(lru_.begin(), lru_, it->second.lru);
+    lru_.touch(it->second.lru);
     ++stats_.lookups;
     ++stats_.hits;
     ++stats_.memoryHits;
@@ -127,6 +127,16 @@ TerminalSetCache::getOrGenerate(const BatchKey& key, const std::function<grammar
     return result;
 }
 
+void TerminalSetCache::markSuperseded(const BatchKey& key) {
+    std::lock_guard lock(mutex_);
+    if (const auto it = entries_.find(key); it != entries_.end()) lru_.supersede(it->second.lru);
+}
+
+void TerminalSetCache::markCurrent(const BatchKey& key) {
+    std::lock_guard lock(mutex_);
+    if (const auto it = entries_.find(key); it != entries_.end()) lru_.touch(it->second.lru);
+}
+
 void TerminalSetCache::trim() {
     std::lock_guard lock(mutex_);
     trimLocked(nullptr);
@@ -145,8 +155,7 @@ void TerminalSetCache::insertLocked(const BatchKey& key, const SetPtr& set,
         stats_.memoryBytes -= entry.bytes;
         lru_.erase(entry.lru);
     }
-    lru_.push_front(key);
-    entry = {set, set->byteSize(), lru_.begin()};
+    entry = {set, set->byteSize(), lru_.pushFront(key)};
     stats_.memoryBytes += entry.bytes;
     ++stats_.insertions;
     trimLocked(ours);
@@ -157,7 +166,7 @@ void TerminalSetCache::trimLocked(const grammar::TerminalSet* ours) {
     // and a holder letting go concurrently can only make an entry look pinned a little longer.
     for (auto it = lru_.end(); it != lru_.begin() && stats_.memoryBytes > options_.memoryBudgetBytes;) {
         --it;
-        const auto entry = entries_.find(*it);
+        const auto entry = entries_.find(it->key);
         const long holders = entry->second.set.use_count() - (entry->second.set.get() == ours ? 1 : 0);
         if (holders > 1) continue;
         stats_.memoryBytes -= entry->second.bytes;

@@ -10,7 +10,7 @@ PayloadBytes PayloadCache::find(const cache::BatchKey& key) {
         return nullptr;
     }
     ++stats_.hits;
-    lru_.splice(lru_.begin(), lru_, it->second.lru);
+    lru_.touch(it->second.lru);
     return it->second.bytes;
 }
 
@@ -28,17 +28,27 @@ void PayloadCache::insert(const cache::BatchKey& key, PayloadBytes bytes) {
         stats_.bytes -= it->second.bytes->size();
         lru_.erase(it->second.lru);
     }
-    lru_.push_front(key);
     stats_.bytes += bytes->size();
-    it->second = {std::move(bytes), lru_.begin()};
+    it->second = {std::move(bytes), lru_.pushFront(key)};
     ++stats_.insertions;
     while (stats_.bytes > budget_) {
-        const auto oldest = entries_.find(lru_.back());
+        const auto coldest = lru_.coldest();
+        const auto oldest = entries_.find(coldest->key);
         stats_.bytes -= oldest->second.bytes->size();
         entries_.erase(oldest);
-        lru_.pop_back();
+        lru_.erase(coldest);
         ++stats_.evictions;
     }
+}
+
+void PayloadCache::markSuperseded(const cache::BatchKey& key) {
+    std::lock_guard lock(mutex_);
+    if (const auto it = entries_.find(key); it != entries_.end()) lru_.supersede(it->second.lru);
+}
+
+void PayloadCache::markCurrent(const cache::BatchKey& key) {
+    std::lock_guard lock(mutex_);
+    if (const auto it = entries_.find(key); it != entries_.end()) lru_.touch(it->second.lru);
 }
 
 PayloadCacheStats PayloadCache::stats() const {

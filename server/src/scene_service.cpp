@@ -213,6 +213,17 @@ Json SceneService::publish(const std::vector<cells::KeyChange>& changes, uint64_
              {"previous_extruded_set", contentUrl(PayloadKind::ExtrudedSet, change.batch, change.before)}});
     }
     lastSeq_ = seq;
+    lock.unlock();
+    // The old versions go before any current content when a tier is full, so that a tuning
+    // session does not push the rest of the city out; an undo makes its version current again.
+    for (const cells::KeyChange& change : changes) {
+        decoded_.markSuperseded(change.before);
+        decoded_.markCurrent(change.after);
+        for (PayloadCache* tier : {&terminalPayloads_, &extrudedPayloads_}) {
+            tier->markSuperseded(change.before);
+            tier->markCurrent(change.after);
+        }
+    }
     return list;
 }
 

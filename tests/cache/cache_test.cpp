@@ -139,6 +139,27 @@ TEST(TerminalSetCache, EvictsTheLeastRecentlyUsedFirst) {
     EXPECT_EQ(s.insertions, 5u);
 }
 
+TEST(TerminalSetCache, SupersededEntriesGoFirstLongestSupersededFirst) {
+    TerminalSetCache cache({.memoryBudgetBytes = 4 * bytesOf(100), .diskBudgetBytes = 0, .diskPath = {}});
+    for (int i = 0; i < 4; ++i) cache.insert(keyOf(i), makeSet(100, i));
+    cache.markSuperseded(keyOf(2));
+    cache.markSuperseded(keyOf(1));
+    cache.markSuperseded(keyOf(1)); // twice: no change
+    cache.markSuperseded(keyOf(9)); // not cached: ignored
+    cache.insert(keyOf(4), makeSet(100, 4));
+    EXPECT_EQ(cache.findInMemory(keyOf(2)), nullptr) << "superseded longest ago";
+    cache.markCurrent(keyOf(1)); // an undo back to it: current and most recent again
+    cache.insert(keyOf(5), makeSet(100, 5));
+    EXPECT_EQ(cache.findInMemory(keyOf(0)), nullptr) << "the least recently used current entry";
+    for (int i : {1, 3, 4, 5}) EXPECT_NE(cache.findInMemory(keyOf(i)), nullptr) << i;
+    // A hit makes a superseded entry current too.
+    cache.markSuperseded(keyOf(3));
+    EXPECT_NE(cache.findInMemory(keyOf(3)), nullptr);
+    cache.insert(keyOf(6), makeSet(100, 6));
+    EXPECT_EQ(cache.findInMemory(keyOf(1)), nullptr);
+    EXPECT_NE(cache.findInMemory(keyOf(3)), nullptr);
+}
+
 TEST(TerminalSetCache, PinnedEntriesSurviveAndTheOverflowIsReported) {
     TerminalSetCache cache({.memoryBudgetBytes = 2 * bytesOf(100), .diskBudgetBytes = 0, .diskPath = {}});
     cache.insert(keyOf(0), makeSet(100, 0));
@@ -163,7 +184,8 @@ TEST(TerminalSetCache, PinnedEntriesSurviveAndTheOverflowIsReported) {
     EXPECT_NE(cache.find(keyOf(3)), nullptr);
 }
 
-// Random inserts, finds and generations with random sizes, with and without pins held:
+// Random inserts, finds, generations and superseded or current marks with random sizes, with
+// and without pins held:
 // resident bytes never exceed the budget when nothing is pinned, never exceed budget plus
 // pinned bytes otherwise, every hit is the latest set of its key, and the counters add up.
 void randomAccess(bool withPins, uint32_t seed) {
@@ -176,9 +198,13 @@ void randomAccess(bool withPins, uint32_t seed) {
     for (int op = 0; op < 3000; ++op) {
         const int k = int(rng() % 64);
         const size_t records = rng() % 128;
-        const uint32_t choice = rng() % 10;
+        const uint32_t choice = rng() % 12;
         TerminalSetCache::SetPtr got;
-        if (choice < 4) {
+        if (choice == 10) {
+            cache.markSuperseded(keyOf(k));
+        } else if (choice == 11) {
+            cache.markCurrent(keyOf(k));
+        } else if (choice < 4) {
             latest[k] = ++version;
             cache.insert(keyOf(k), makeSet(records, version));
         } else if (choice < 8) {

@@ -115,6 +115,23 @@ TEST(PayloadCache, EvictsLeastRecentlyUsedWithinItsBudget) {
     EXPECT_EQ(cache.stats().misses, 1u);
 }
 
+TEST(PayloadCache, SupersededPayloadsGoBeforeCurrentOnes) {
+    PayloadCache cache(100);
+    const auto bytes = [](size_t n) { return std::make_shared<const std::vector<uint8_t>>(n, 1); };
+    cache::BatchKey keys[4];
+    for (uint64_t i = 0; i < 4; ++i) keys[i].parametersHash = i + 1;
+    for (int i = 0; i < 3; ++i) cache.insert(keys[i], bytes(30));
+    cache.markSuperseded(keys[2]); // the most recent, but an old version now
+    cache.insert(keys[3], bytes(30));
+    EXPECT_FALSE(cache.peek(keys[2]));
+    EXPECT_TRUE(cache.peek(keys[0]));
+    cache.markSuperseded(keys[0]);
+    cache.markCurrent(keys[0]); // an undo back to it
+    cache.insert(keys[2], bytes(30));
+    EXPECT_FALSE(cache.peek(keys[1])) << "now the least recently used";
+    EXPECT_TRUE(cache.peek(keys[0]));
+}
+
 TEST(RateLimiter, ATokenBucketPerClient) {
     RateLimiter limiter(10.0, 3.0);
     const auto t0 = RateLimiter::Clock::now();

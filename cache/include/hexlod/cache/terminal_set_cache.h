@@ -4,12 +4,12 @@
 #pragma once
 
 #include "hexlod/cache/batch_key.h"
+#include "hexlod/cache/recency_list.h"
 #include "hexlod/grammar/terminal_set.h"
 
 #include <cstdint>
 #include <functional>
 #include <future>
-#include <list>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -84,6 +84,11 @@ public:
     // others wait for it. If `generate` throws, every waiter gets the exception and nothing
     // is cached.
     SetPtr getOrGenerate(const BatchKey& key, const std::function<grammar::TerminalSet()>& generate);
+    // A key nothing current has any more (an edited batch's old version) is evicted before
+    // every current entry; markCurrent makes a key current and most recently used again (an
+    // undo back to that version). Keys not in the memory tier are ignored.
+    void markSuperseded(const BatchKey& key);
+    void markCurrent(const BatchKey& key);
     // Evicts entries unpinned since the last call, if the memory tier is over budget.
     void trim();
     // Returns once every set queued for the disk tier so far is written, then trims: new sets
@@ -95,7 +100,7 @@ private:
     struct Entry {
         SetPtr set;
         uint64_t bytes = 0;
-        std::list<BatchKey>::iterator lru;
+        RecencyList<BatchKey>::Position lru;
     };
 
     SetPtr findInMemoryLocked(const BatchKey& key);
@@ -109,7 +114,7 @@ private:
     std::unique_ptr<DiskWriter> writer_; // after disk_: destroyed first, writing what is queued
     mutable std::mutex mutex_;
     std::unordered_map<BatchKey, Entry, BatchKeyHash> entries_;
-    std::list<BatchKey> lru_; // most recently used first
+    RecencyList<BatchKey> lru_;
     std::unordered_map<BatchKey, std::shared_future<SetPtr>, BatchKeyHash> generating_;
     CacheStats stats_; // disk fields are filled from the disk tier in stats()
 };

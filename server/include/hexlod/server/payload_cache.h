@@ -4,9 +4,9 @@
 #pragma once
 
 #include "hexlod/cache/batch_key.h"
+#include "hexlod/cache/recency_list.h"
 
 #include <cstdint>
-#include <list>
 #include <memory>
 #include <mutex>
 #include <unordered_map>
@@ -31,17 +31,20 @@ public:
     PayloadBytes find(const cache::BatchKey& key); // counts a hit or a miss
     PayloadBytes peek(const cache::BatchKey& key); // counts nothing, touches nothing
     void insert(const cache::BatchKey& key, PayloadBytes bytes);
+    // As cache::TerminalSetCache's: superseded keys are evicted before current ones.
+    void markSuperseded(const cache::BatchKey& key);
+    void markCurrent(const cache::BatchKey& key);
     PayloadCacheStats stats() const;
 
 private:
     struct Entry {
         PayloadBytes bytes;
-        std::list<cache::BatchKey>::iterator lru;
+        cache::RecencyList<cache::BatchKey>::Position lru;
     };
     const uint64_t budget_;
     mutable std::mutex mutex_;
     std::unordered_map<cache::BatchKey, Entry, cache::BatchKeyHash> entries_;
-    std::list<cache::BatchKey> lru_; // most recent first
+    cache::RecencyList<cache::BatchKey> lru_;
     PayloadCacheStats stats_;
 };
 
