@@ -133,6 +133,43 @@ TEST(Generation, EditedBuildingsAreExpandedAloneAndSplicedIntoTheirBatch) {
     EXPECT_EQ(live.service().expansions(), 3u);
 }
 
+uint64_t terminalPayloadMisses(const LiveServer& live) {
+    const std::string metrics = live.get("/metrics").body;
+    const std::string name = "hexlod_cache_misses_total{tier=\"terminal_payload\"} ";
+    const size_t at = metrics.find(name);
+    return at == std::string::npos ? ~uint64_t(0) : std::stoull(metrics.substr(at + name.size()));
+}
+
+// A tier with room for the city and two versions of the edited batch: after six edits, every
+// current payload is still cached (with plain LRU the oldest current ones went first).
+TEST(Generation, AnEditsOldVersionsAreEvictedBeforeCurrentContent) {
+    std::vector<std::string> urls;
+    uint64_t total = 0, edited = 0;
+    {
+        LiveServer probe;
+        for (const Json& batch : buildingBatches(probe)) {
+            const uint64_t bytes = probe.get(batch["terminal_set"]).body.size();
+            total += bytes;
+            urls.push_back(batch["terminal_set"]);
+        }
+        edited = probe.get(probe.getJson("/api/v1/buildings/7")["batch"]["terminal_set"]).body.size();
+    }
+    server::ServiceOptions options;
+    options.terminalPayloadBytes = total + 2 * edited;
+    LiveServer live({}, LiveServer::quietOptions(), options);
+    for (const std::string& url : urls) ASSERT_EQ(live.get(url).status, 200) << url;
+    for (int i = 0; i < 6; ++i) {
+        const auto reply =
+            live.post("/api/v1/edits", R"({"selector":{"buildings":[7]},"params":{"floor_h":)" +
+                                           std::to_string(3.2 + 0.05 * i) + "}}");
+        ASSERT_EQ(reply.status, 200) << reply.body;
+        ASSERT_EQ(live.get(Json::parse(reply.body)["changed"][0]["terminal_set"]).status, 200);
+    }
+    const uint64_t misses = terminalPayloadMisses(live);
+    for (const Json& batch : buildingBatches(live)) EXPECT_EQ(live.get(batch["terminal_set"]).status, 200);
+    EXPECT_EQ(terminalPayloadMisses(live), misses) << "a current payload was evicted";
+}
+
 TEST(Generation, EveryBatchOfTheSceneServesBothPayloads) {
     LiveServer live;
     const Json index = live.getJson("/api/v1/cells");
