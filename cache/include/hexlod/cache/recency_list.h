@@ -26,7 +26,6 @@ public:
     // superseded first.
     Position begin() { return nodes_.begin(); }
     Position end() { return nodes_.end(); }
-    bool empty() const { return nodes_.empty(); }
     Position coldest() { return std::prev(nodes_.end()); }
 
     Position pushFront(const Key& key) {
