@@ -2,12 +2,15 @@
 // LOD4: terminal meshes instanced over the cull pass's draw lists, the instance data read as
 // vertex attributes straight from the list records (vertex pulling from buffers costs about 6x
 // on llvmpipe). In the last part of its range a terminal flattens toward its wall, so that the
-// switch to its impostor (LOD3) does not pop its depth. Fog is computed per vertex: across a
-// triangle it changes by far less than one 8-bit level, and per fragment it cost about 5 % of
-// the pass (the LOD4 pass is bound by setup, then by the fragments it shades). A two-sided
-// mesh's triangle (lod/shape_geometry.h) shows the colour of the side the camera sees: its
-// vertex normals are its face's, so the sign of the normal against the view ray at a vertex is
-// the triangle's facing, as the rasteriser finds it.
+// switch to its impostor (LOD3) does not pop its depth. The lighting (frame.glsl's, fog
+// included) is computed per vertex and its colour interpolated: the pass is bound by
+// llvmpipe's triangle setup, whose cost grows with the values interpolated (seven as normal,
+// albedo and fog, three as a colour), and on the faceted meshes most shapes are, whose vertex
+// normals are their faces', it is the same colour (docs/BENCHMARKS.md, "LOD4 lit per vertex").
+// A two-sided mesh's triangle (lod/shape_geometry.h, drawn with `twoSided` set) shows the
+// colour of the side the camera sees, lit from that side: its vertex normals are its face's,
+// so the sign of the normal against the view ray at a vertex is the triangle's facing, as the
+// rasteriser finds it.
 #include "gpu_types.h"
 #include "frame.glsl"
 
@@ -21,9 +24,9 @@ layout(location = HEXLOD_ATTRIBUTE_INSTANCE_ORIENTATION) in vec4 orientation;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_SIZE) in vec2 size;
 layout(location = HEXLOD_ATTRIBUTE_INSTANCE_DEPTH) in float depthRatio;
 
-out vec3 vNormal;
-out vec3 vAlbedo;
-out float vFog;
+uniform bool twoSided;
+
+out vec3 vColour;
 
 void main() {
     vec4 q = normalize(orientation);
@@ -38,7 +41,7 @@ void main() {
     // end of the LOD3 transition) is 1e-4 m, so that it dominates, as in scopeNormal.
     vec3 n = unitNormal / max(vec3(size, depth), vec3(1e-4));
     n = length(n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
-    vNormal = mat3(axisX, axisY, axisZ) * n;
-    vAlbedo = dot(vNormal, position) > 0.0 ? backAlbedo.rgb : albedo.rgb;
-    vFog = fogAmount(position);
+    vec3 normal = mat3(axisX, axisY, axisZ) * n;
+    bool back = twoSided && dot(normal, position) > 0.0;
+    vColour = shadeFogged(back ? backAlbedo.rgb : albedo.rgb, back ? -normal : normal, fogAmount(position));
 }

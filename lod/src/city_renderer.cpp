@@ -533,6 +533,7 @@ void CityRenderer::drawTerminalMeshes(PassTimer& timer) {
     programs_->lod4.use();
     for (const SidedRun& run : shapes_.sidedRuns()) {
         if (run.twoSided) gl::glDisable(GL_CULL_FACE);
+        programs_->lod4.set("twoSided", int(run.twoSided));
         gl::glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
                                         reinterpret_cast<const void*>(uintptr_t(run.first) * kCommandStride),
                                         GLsizei(run.count), kCommandStride);

@@ -343,7 +343,9 @@ TEST_F(CityRendererTest, DoubleSidedTreePartsDrawEachTriangleOnceAndLookAsTheirT
     // Leaves are double-sided: each triangle is in the mesh once per side, and the LOD4 pass drew
     // both, the GL culling the one facing away. It now draws one, unculled, with the colour of
     // the side in view (lod/shape_geometry.h). The golden is the image of the old way, from
-    // under the trees, where leaves show both sides.
+    // under the trees, where leaves show both sides, lit per pixel: LOD4 is now lit per vertex,
+    // which shades the round bark and twigs a little differently (47 dB against the golden);
+    // leaves lit from the wrong side would be 33 dB.
     auto [city, impostors] = park();
     scene::LodProfile lod;
     lod.treeGeometricError = 0.0; // every tree as geometry
@@ -358,7 +360,7 @@ TEST_F(CityRendererTest, DoubleSidedTreePartsDrawEachTriangleOnceAndLookAsTheirT
     EXPECT_GT(r.stats.terminalsPerLod[4], 1000u);
     EXPECT_EQ(r.stats.treeBillboards, 0u);
     EXPECT_GT(coverage(r.image), 0.3);
-    expectGolden(r.image, "park_tree_parts", 60.0);
+    expectGolden(r.image, "park_tree_parts", 44.0);
 }
 
 TEST_F(CityRendererTest, HiddenImpostorsAndBillboardsAreDroppedWithoutChangingAPixel) {
