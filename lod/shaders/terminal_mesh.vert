@@ -6,7 +6,8 @@
 // included) is computed per vertex and its colour interpolated: the pass is bound by
 // llvmpipe's triangle setup, whose cost grows with the values interpolated (seven as normal,
 // albedo and fog, three as a colour), and on the faceted meshes most shapes are, whose vertex
-// normals are their faces', it is the same colour (docs/BENCHMARKS.md, "LOD4 lit per vertex").
+// normals are their faces', it is the same colour (docs/BENCHMARKS.md, "Leaner curtain walls,
+// LOD4 lit per vertex").
 // A two-sided mesh's triangle (lod/shape_geometry.h, drawn with `twoSided` set) shows the
 // colour of the side the camera sees, lit from that side: its vertex normals are its face's,
 // so the sign of the normal against the view ray at a vertex is the triangle's facing, as the
