@@ -259,9 +259,9 @@ void spire(MeshBuilder& b, int detail) {
 
 // Curtain glass is most of a tower's facade, and its coarse level most of the thesis street's
 // LOD4 facade triangles: that level is the one with two-segment caps (50 triangles), where half
-// the fine mesh's would pick three (62). Square caps (level 0) do not qualify: the fine caps'
-// facets find no surface shaded alike in them (mesh_deviation.h). docs/BENCHMARKS.md, "Leaner
-// curtain walls, LOD4 lit per vertex".
+// the fine mesh's would pick three (62). Square caps (level 0, 38 triangles) qualify too, but
+// with three times the deviation they start farther out, and the street's LOD4 pass measured no
+// faster with them (docs/BENCHMARKS.md, "Leaner curtain walls, LOD4 lit per vertex").
 constexpr ShapeGenerator kGenerators[] = {
     {"curtain_glass", 10, curtainGlass, 0.4f},
     {"spandrel", 10, spandrel},
