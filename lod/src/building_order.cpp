@@ -19,8 +19,16 @@ std::vector<glm::uvec2> nearestFirstRuns(const std::vector<render::VolumeBuildin
     }
     std::stable_sort(order.begin(), order.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<uint32_t> sorted;
+    sorted.reserve(order.size());
+    for (const auto& [distance, b] : order) sorted.push_back(b);
+    return buildingRuns(buildings, sorted);
+}
+
+std::vector<glm::uvec2> buildingRuns(const std::vector<render::VolumeBuilding>& buildings,
+                                     const std::vector<uint32_t>& kept) {
     std::vector<glm::uvec2> runs;
-    for (const auto& [distance, b] : order) {
+    for (const uint32_t b : kept) {
         const render::VolumeBuilding& building = buildings[b];
         if (!runs.empty() && runs.back().x + runs.back().y == building.firstIndex)
             runs.back().y += building.indexCount;

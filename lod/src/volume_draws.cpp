@@ -80,7 +80,10 @@ std::vector<glm::uvec2> CityRenderer::visibleBuildingRuns(const VolumeDraw& draw
         }
         kept.push_back(b);
     }
-    return nearestFirstRuns(buildings, kept, origin);
+    // Beyond LOD1's distance a building is a few pixels: the depth order spares little shading
+    // there, and sorted, the overview's buildings split into about one draw each
+    // (docs/BENCHMARKS.md, "Far base volumes in the mesh's order").
+    return draw.ring < 2 ? nearestFirstRuns(buildings, kept, origin) : buildingRuns(buildings, kept);
 }
 
 // One draw per run; a single run is the common case (the whole mesh, or every building left).

@@ -1,4 +1,5 @@
-// The order of a base volume mesh's buildings: nearest the camera first, adjacent ones merged.
+// The order of a base volume mesh's buildings: nearest the camera first, or the mesh's own far
+// away; adjacent ones merged.
 #include "hexlod/lod/building_order.h"
 
 #include <gtest/gtest.h>
@@ -43,6 +44,16 @@ TEST(BuildingOrderTest, TheBoxNotItsCornerDecidesAndACameraInsideABuildingDrawsI
                                                  {6, 6, glm::vec3(-6, -1, 0), glm::vec3(-5, 1, 1)}};
     EXPECT_EQ(nearestFirstRuns(twins, {1, 0}, glm::vec3(0.0f)), (Runs{{6, 6}, {0, 6}}));
     EXPECT_EQ(nearestFirstRuns(twins, {0, 1}, glm::vec3(0.0f)), (Runs{{0, 12}}));
+}
+
+TEST(BuildingOrderTest, FarBuildingsKeepTheGivenOrderInAsFewRunsAsTheGapsAllow) {
+    const auto buildings = row(5);
+    EXPECT_EQ(buildingRuns(buildings, {0, 1, 2, 3, 4}), (Runs{{0, 30}}));
+    // Buildings 2 and 4 left out: two runs of what is left, in the mesh's order.
+    EXPECT_EQ(buildingRuns(buildings, {0, 1, 3}), (Runs{{0, 12}, {18, 6}}));
+    // An order against the mesh's shares no run.
+    EXPECT_EQ(buildingRuns(buildings, {1, 0}), (Runs{{6, 6}, {0, 6}}));
+    EXPECT_TRUE(buildingRuns(buildings, {}).empty());
 }
 
 } // namespace

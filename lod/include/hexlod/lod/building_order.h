@@ -1,7 +1,9 @@
 // The order in which a base volume mesh's buildings are drawn: nearest the camera first. At
 // one sample llvmpipe tests depth before it shades and skips a group of pixels that all fail,
 // so a near building drawn first spares the shading of the ones it hides (the shells under
-// terminal sets are drawn before anything else, with no depth to be tested against).
+// terminal sets are drawn before anything else, with no depth to be tested against). Far
+// away that saves little, and each run costs llvmpipe a draw of its own: there the buildings
+// keep the mesh's order, in as few runs as the ones left out allow.
 #pragma once
 
 #include "hexlod/render/base_volume_mesh.h"
@@ -20,5 +22,10 @@ namespace hexlod::lod {
 // and the index buffer share a run, so an unmoved camera inside one row costs few draws.
 std::vector<glm::uvec2> nearestFirstRuns(const std::vector<render::VolumeBuilding>& buildings,
                                          const std::vector<uint32_t>& kept, const glm::vec3& origin);
+
+// The index runs of `kept` (indices into `buildings`) in the order given, buildings adjacent
+// in both that order and the index buffer sharing a run.
+std::vector<glm::uvec2> buildingRuns(const std::vector<render::VolumeBuilding>& buildings,
+                                     const std::vector<uint32_t>& kept);
 
 } // namespace hexlod::lod
