@@ -61,6 +61,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"volumes_occluded", f.volumesOccluded},
         {"volumes_built", f.volumesBuilt},
         {"volume_buildings_occluded", f.volumeBuildingsOccluded},
+        {"volume_building_points", f.volumeBuildingPoints},
         {"batches_drawn", f.batchesDrawn},
         {"batches_pending", f.batchesPending},
         {"batches_rejected", f.batchesRejected},

@@ -22,21 +22,12 @@ uniform sampler2D impostorTableWeights;
 uniform uvec4 impostorLayout;
 #include "impostor_views.glsl"
 #include "tree_size.glsl"
+#include "coverage_hash.glsl"
 
 uniform uint allBillboards;
 flat out vec3 vColour;
 
 const vec4 kNoPoint = vec4(2.0, 2.0, 2.0, 1.0);
-
-// A fixed number in [0, 1) per tree.
-float treeHash(uint i) {
-    i ^= i >> 16;
-    i *= 0x7feb352du;
-    i ^= i >> 15;
-    i *= 0x846ca68bu;
-    i ^= i >> 16;
-    return float(i >> 8) * (1.0 / 16777216.0);
-}
 
 void main() {
     vec4 tree = billboardTrees[gl_VertexID];
@@ -60,7 +51,7 @@ void main() {
     vec3 normal = viewAverages[entry + 1u].xyz;
     // The sphere's diameter on screen, shrunk to the area the tree covers in it.
     float side = 2.0 * sphere.w * treeScreenScale / length(centre) * sqrt(albedo.a);
-    if (side < 1.0 && treeHash(uint(gl_VertexID)) >= side * side) {
+    if (side < 1.0 && coverageHash(uint(gl_VertexID)) >= side * side) {
         gl_Position = kNoPoint;
         return;
     }

@@ -1,6 +1,8 @@
 // LOD0's wall texture: storeys and window bays drawn procedurally in facade coordinates
 // (metres along the wall, height), filtered to their mean where a bay is smaller than a pixel.
 // Roofs (faces that look up or down) keep their colour.
+#include "wall_colour.glsl"
+
 vec3 wallTexture(vec3 albedo, vec3 n, vec3 local) {
     if (abs(n.z) >= 0.5) return albedo;
     vec2 along = normalize(vec2(-n.y, n.x));
@@ -9,6 +11,6 @@ vec3 wallTexture(vec3 albedo, vec3 n, vec3 local) {
     vec2 width = fwidth(facade);
     vec2 inside = smoothstep(vec2(0.25, 0.3) - width, vec2(0.25, 0.3) + width, cell) *
                   (1.0 - smoothstep(vec2(0.75, 0.8) - width, vec2(0.75, 0.8) + width, cell));
-    float window = mix(inside.x * inside.y, 0.25, clamp(max(width.x, width.y) * 2.0 - 0.5, 0.0, 1.0));
-    return mix(albedo, vec3(0.18, 0.22, 0.27), window);
+    float window = mix(inside.x * inside.y, kWallWindowShare, clamp(max(width.x, width.y) * 2.0 - 0.5, 0.0, 1.0));
+    return mix(albedo, kWallGlass, window);
 }

@@ -28,14 +28,15 @@ std::vector<glm::uvec2> nearestFirstRuns(const std::vector<render::VolumeBuildin
 std::vector<glm::uvec2> buildingRuns(const std::vector<render::VolumeBuilding>& buildings,
                                      const std::vector<uint32_t>& kept) {
     std::vector<glm::uvec2> runs;
-    for (const uint32_t b : kept) {
-        const render::VolumeBuilding& building = buildings[b];
-        if (!runs.empty() && runs.back().x + runs.back().y == building.firstIndex)
-            runs.back().y += building.indexCount;
-        else
-            runs.emplace_back(building.firstIndex, building.indexCount);
-    }
+    for (const uint32_t b : kept) appendRun(runs, buildings[b].firstIndex, buildings[b].indexCount);
     return runs;
+}
+
+void appendRun(std::vector<glm::uvec2>& runs, uint32_t first, uint32_t count) {
+    if (!runs.empty() && runs.back().x + runs.back().y == first)
+        runs.back().y += count;
+    else
+        runs.emplace_back(first, count);
 }
 
 } // namespace hexlod::lod

@@ -156,6 +156,11 @@ bool CityRenderer::init(std::string& error) {
             std::string("#define VOLUME_SHADING ") + shading + "\n", error);
         if (!volume->valid()) return false;
     }
+    programs_->buildingPoint = render::ShaderProgram::build(
+        library,
+        {{render::ShaderStage::Vertex, "building_point.vert"}, {render::ShaderStage::Fragment, "point.frag"}},
+        "", error);
+    if (!programs_->buildingPoint.valid()) return false;
 
     // The reference draws every terminal's full mesh; only the LOD system may draw a coarser one.
     const std::vector<CoarseMesh> coarse =

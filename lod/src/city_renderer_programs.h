@@ -13,6 +13,7 @@ struct CityRenderer::Programs {
     render::ShaderProgram lod4, impostor, impostorWall; // impostor: LOD3 ray-cast; impostorWall: LOD2
     // Base volumes: plain (the shells under terminal sets), textured (LOD0); the ground.
     render::ShaderProgram volume, texturedVolume, ground;
+    render::ShaderProgram buildingPoint;            // LOD0's far buildings (building_points.h)
     std::map<uint32_t, render::ShaderProgram> lod1; // per building grammar with buildings
 };
 

@@ -142,10 +142,10 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
                                          "#define TREE_BILLBOARD_FLAT " + std::to_string(flat) + "\n", error);
         if (!billboardPrograms_[flat].valid()) return false;
     }
-    pointProgram_ = render::ShaderProgram::build(library,
-                                                 {{render::ShaderStage::Vertex, "tree_point.vert"},
-                                                  {render::ShaderStage::Fragment, "tree_point.frag"}},
-                                                 "", error);
+    pointProgram_ = render::ShaderProgram::build(
+        library,
+        {{render::ShaderStage::Vertex, "tree_point.vert"}, {render::ShaderStage::Fragment, "point.frag"}}, "",
+        error);
     if (!pointProgram_.valid()) return false;
     // The shaders pull their trees from the buffer; the core profile still wants a vertex array.
     gl::glCreateVertexArrays(1, &vao_);

@@ -1,5 +1,6 @@
 // Building, uploading and evicting base volume meshes.
 #include "hexlod/lod/volume_cache.h"
+#include "hexlod/lod/building_points.h"
 #include "hexlod/lod/lod1_elements.h"
 #include "hexlod/render/base_volume_mesh.h"
 #include "hexlod/render/gl_api.h"
@@ -12,7 +13,7 @@ namespace {
 
 void release(VolumeMesh& mesh) {
     releaseVolumeMesh(mesh.gpu);
-    for (uint32_t buffer : {mesh.elementBuffer, mesh.parameterBuffer})
+    for (uint32_t buffer : {mesh.elementBuffer, mesh.parameterBuffer, mesh.pointBuffer})
         if (buffer) gl::glDeleteBuffers(1, &buffer);
 }
 
@@ -95,6 +96,11 @@ const VolumeMesh& VolumeCache::acquire(uint32_t batch, float inset, bool lod1) {
     render::vertexBounds(shell.vertices, mesh.boundsMin, mesh.boundsMax);
     mesh.gpu = uploadVolumeMesh(shell);
     mesh.bytes = mesh.gpu.bytes + mesh.buildings.size() * sizeof(render::VolumeBuilding);
+    if (inset == 0.0f) {
+        const std::vector<GpuBuildingPoint> points = packBuildingPoints(mesh.buildings);
+        mesh.pointBuffer = immutableBuffer(points.data(), points.size() * sizeof(GpuBuildingPoint));
+        mesh.bytes += points.size() * sizeof(GpuBuildingPoint);
+    }
     stats_.residentBytes += mesh.bytes;
     ++stats_.built;
     VolumeMesh& placed = meshes_[key] = std::move(mesh);

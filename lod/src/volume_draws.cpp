@@ -5,7 +5,15 @@
 #include "hexlod/lod/occlusion_tests.h"
 #include "hexlod/render/gl_api.h"
 
+#include <cmath>
+
 namespace hexlod::lod {
+namespace {
+
+// building_point.vert's BuildingPointBuffer.
+constexpr uint32_t kBuildingPointBinding = 17;
+
+} // namespace
 
 void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,
                                    double nearPlane, double farPlane, FrameStats& stats, PassTimer& timer) {
@@ -13,6 +21,9 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
     setOcclusion(occlusion, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
                  options_.height, volumeTiles_.columns(), volumeTiles_.rows(), volumeTiles_.tileSize());
     const bool test = options_.dropHidden && volumeTiles_.valid();
+    const float screenScale = float(0.5 * options_.height / std::tan(0.5 * pose.fovY));
+    const BuildingPointCut cut{screenScale,
+                               float(options_.buildingPointsUnderSse * options_.lod.maxScreenSpaceError)};
     OcclusionGrid tiles;
     bool drawnSinceTiles = false; // the tiles are built again only after more was drawn
     for (uint8_t ring = 0; ring < kVolumeRings; ++ring) {
@@ -38,10 +49,10 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
             // Building by building too: at street level a batch that shows at all often shows
             // a few of its buildings only, and with multisampling llvmpipe shades every
             // fragment it rasterises, hidden or not (it skips hidden ones only at one sample).
-            draw.runs = visibleBuildingRuns(draw, pose.position, occlusion,
-                                            test && !tiles.tiles.empty() ? &tiles : nullptr, stats);
+            selectBuildingRuns(draw, pose.position, occlusion,
+                               test && !tiles.tiles.empty() ? &tiles : nullptr, cut, stats);
         }
-        drawVolumes(draws, pose.position, stats, timer);
+        drawVolumes(draws, pose.position, screenScale, stats, timer);
         drawnSinceTiles = drawnSinceTiles || !draws.empty();
     }
 }
@@ -63,13 +74,18 @@ bool CityRenderer::volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera
     return tilesHideBox(occlusion, &tiles, lo, hi);
 }
 
-std::vector<glm::uvec2> CityRenderer::visibleBuildingRuns(const VolumeDraw& draw, const glm::dvec3& camera,
-                                                          const shared::CullFrame& occlusion,
-                                                          const OcclusionGrid* tiles,
-                                                          FrameStats& stats) const {
+void CityRenderer::selectBuildingRuns(VolumeDraw& draw, const glm::dvec3& camera,
+                                      const shared::CullFrame& occlusion, const OcclusionGrid* tiles,
+                                      const BuildingPointCut& cut, FrameStats& stats) const {
+    draw.pointRuns.clear();
     const std::vector<render::VolumeBuilding>& buildings = draw.mesh->buildings;
-    if (buildings.empty()) return {{0u, draw.mesh->indexCount}};
+    if (buildings.empty()) {
+        draw.runs = {{0u, draw.mesh->indexCount}};
+        return;
+    }
     const glm::vec3 origin(draw.mesh->cellOrigin - camera);
+    // Points are LOD0's far form: not for the shells under terminals, nor LOD1's walls.
+    const bool points = draw.mesh->pointBuffer != 0 && draw.textured && draw.lod0Blend >= 1.0f;
     std::vector<uint32_t> kept;
     kept.reserve(buildings.size());
     for (uint32_t b = 0; b < buildings.size(); ++b) {
@@ -78,12 +94,17 @@ std::vector<glm::uvec2> CityRenderer::visibleBuildingRuns(const VolumeDraw& draw
             ++stats.volumeBuildingsOccluded;
             continue;
         }
+        if (points && buildingIsPoint(buildings[b], origin, cut)) {
+            appendRun(draw.pointRuns, b, 1);
+            ++stats.volumeBuildingPoints;
+            continue;
+        }
         kept.push_back(b);
     }
     // Beyond LOD1's distance a building is a few pixels: the depth order spares little shading
     // there, and sorted, the overview's buildings split into about one draw each
     // (docs/BENCHMARKS.md, "Far base volumes in the mesh's order").
-    return draw.ring < 2 ? nearestFirstRuns(buildings, kept, origin) : buildingRuns(buildings, kept);
+    draw.runs = draw.ring < 2 ? nearestFirstRuns(buildings, kept, origin) : buildingRuns(buildings, kept);
 }
 
 // One draw per run; a single run is the common case (the whole mesh, or every building left).
@@ -107,8 +128,35 @@ void CityRenderer::drawRuns(const VolumeDraw& draw, FrameStats& stats) {
     ++stats.draws;
 }
 
+void CityRenderer::drawBuildingPoints(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
+                                      float screenScale, FrameStats& stats) {
+    bool bound = false;
+    for (const VolumeDraw& draw : volumes) {
+        if (draw.pointRuns.empty()) continue;
+        if (!bound) {
+            programs_->buildingPoint.use();
+            programs_->buildingPoint.set("screenScale", screenScale);
+            gl::glBindVertexArray(impostorVao_); // attribute-less: the points are read by gl_VertexID
+            gl::glEnable(GL_PROGRAM_POINT_SIZE);
+            bound = true;
+        }
+        programs_->buildingPoint.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
+        programs_->buildingPoint.set("batch", draw.batch);
+        gl::glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBuildingPointBinding, draw.mesh->pointBuffer);
+        std::vector<GLint> firsts;
+        std::vector<GLsizei> counts;
+        for (const glm::uvec2& run : draw.pointRuns) {
+            firsts.push_back(GLint(run.x));
+            counts.push_back(GLsizei(run.y));
+        }
+        gl::glMultiDrawArrays(GL_POINTS, firsts.data(), counts.data(), GLsizei(counts.size()));
+        ++stats.draws;
+    }
+    if (bound) gl::glDisable(GL_PROGRAM_POINT_SIZE);
+}
+
 void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
-                               FrameStats& stats, PassTimer& timer) {
+                               float screenScale, FrameStats& stats, PassTimer& timer) {
     // LOD0 first, plain or textured, then LOD1 grammar by grammar.
     const render::ShaderProgram* bound = nullptr;
     for (const VolumeDraw& draw : volumes) {
@@ -118,6 +166,7 @@ void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm
         program.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
         drawRuns(draw, stats);
     }
+    drawBuildingPoints(volumes, camera, screenScale, stats);
     timer.end(DrawPass::Lod0);
     for (const auto& [grammar, program] : programs_->lod1) {
         bool bound = false;

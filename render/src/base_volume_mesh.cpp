@@ -25,9 +25,11 @@ struct WallTag {
     uint32_t element;
 };
 
-// One storey band of a building: its faces in footprint-edge order.
-void band(MeshBuilder& b, const grammar::ExtrudedSet& set, std::vector<const grammar::ExtrudedElement*> faces,
-          float inset, uint32_t wall, std::vector<WallTag>& tags) {
+// One storey band of a building: its faces in footprint-edge order. Returns the area and
+// perimeter of its bottom ring, zero where the faces close no ring.
+glm::vec2 band(MeshBuilder& b, const grammar::ExtrudedSet& set,
+               std::vector<const grammar::ExtrudedElement*> faces, float inset, uint32_t wall,
+               std::vector<WallTag>& tags) {
     std::sort(faces.begin(), faces.end(), [](const auto* l, const auto* r) { return l->atom < r->atom; });
     std::vector<glm::vec2> bottom, top;
     std::vector<float> bottomZ, topZ;
@@ -38,13 +40,15 @@ void band(MeshBuilder& b, const grammar::ExtrudedSet& set, std::vector<const gra
         bottomZ.push_back(e->origin.z);
         topZ.push_back(up.z);
     }
-    if (signedArea2(bottom) <= 0.0 || signedArea2(top) <= 0.0) return; // not a closed ring
+    if (signedArea2(bottom) <= 0.0 || signedArea2(top) <= 0.0) return glm::vec2(0.0f); // not a closed ring
     bottom = insetPolygon(bottom, inset);
     top = insetPolygon(top, inset);
     const size_t n = bottom.size();
+    float perimeter = 0.0f;
     for (size_t i = 0; i < n; ++i) {
         const size_t j = (i + 1) % n;
         const glm::vec2 edge = bottom[j] - bottom[i];
+        perimeter += glm::length(edge);
         const size_t before = b.vertexCount();
         b.quad({bottom[i], bottomZ[i]}, {bottom[j], bottomZ[j]}, {top[j], topZ[j]}, {top[i], topZ[i]},
                {edge.y, -edge.x, 0.0f}, wall);
@@ -58,12 +62,17 @@ void band(MeshBuilder& b, const grammar::ExtrudedSet& set, std::vector<const gra
                                   {top[triangles[t + 2]], topZ[triangles[t + 2]]}};
         b.polygon(tri, {0, 0, 1}, kRoofColour);
     }
+    return glm::vec2(float(0.5 * signedArea2(bottom)), perimeter);
 }
 
 } // namespace
 
 uint32_t wallMaterialColour(uint16_t material) {
     return kWallColours[material % 8];
+}
+
+uint32_t roofColour() {
+    return kRoofColour;
 }
 
 TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset,
@@ -81,13 +90,24 @@ TerminalMesh buildBaseVolumes(const grammar::ExtrudedSet& set, float inset,
             if (!(e.size.y > 0.0f) || !(e.size.x > 0.0f) || !std::isfinite(e.origin.z)) continue;
             bands[{e.rule, std::llround(double(e.origin.z) * 1000.0)}].push_back(&e);
         }
+        const uint32_t wall = wallMaterialColour(building.wallMaterial);
+        // The lowest closed band's footprint, for the building's point form.
+        glm::vec2 footprint(0.0f);
+        long long lowest = 0;
         for (auto& [key, faces] : bands) {
-            if (faces.size() >= 3)
-                band(b, set, std::move(faces), inset, wallMaterialColour(building.wallMaterial), tags);
+            if (faces.size() < 3) continue;
+            const glm::vec2 ring = band(b, set, std::move(faces), inset, wall, tags);
+            if (ring.x > 0.0f && (footprint.x == 0.0f || key.second < lowest))
+                footprint = ring, lowest = key.second;
         }
         if (buildings && b.triangleCount() > firstTriangle) {
-            buildings->push_back(
-                {uint32_t(3 * firstTriangle), uint32_t(3 * (b.triangleCount() - firstTriangle))});
+            VolumeBuilding part;
+            part.firstIndex = uint32_t(3 * firstTriangle);
+            part.indexCount = uint32_t(3 * (b.triangleCount() - firstTriangle));
+            part.footprintArea = footprint.x;
+            part.footprintPerimeter = footprint.y;
+            part.wallColour = wall;
+            buildings->push_back(part);
             vertexRanges.emplace_back(firstVertex, b.vertexCount());
         }
     }

@@ -49,8 +49,10 @@ protected:
     Rendered render(testing::TestCity& city, const SceneImpostors& impostors, RenderMode mode,
                     const scene::CameraPose& pose, uint32_t frames = 1, uint32_t samples = 1,
                     bool dropHidden = true, const scene::LodProfile& lod = {},
-                    double treePointsUnderSse = 2.0, bool fitTreeBillboards = true) {
+                    double treePointsUnderSse = 2.0, bool fitTreeBillboards = true,
+                    double buildingPointsUnderSse = 2.0) {
         CityRendererOptions options;
+        options.buildingPointsUnderSse = buildingPointsUnderSse;
         options.fitTreeBillboards = fitTreeBillboards;
         options.lod = lod;
         options.treePointsUnderSse = treePointsUnderSse;
@@ -460,6 +462,34 @@ TEST_F(CityRendererTest, FarBaseVolumesAndBuildingsTheNearOnesHideAreNotDrawnAnd
             EXPECT_EQ(culled.image.pixels, all.image.pixels) << what;
         }
     }
+}
+
+TEST_F(CityRendererTest, BuildingsAPixelOrTwoAcrossArePointsThatLookAsTheirShellsForNoTriangles) {
+    // The city from 2 km, its buildings (20 to 40 m across) one to three pixels: under the
+    // point size (twice the default 2 px error bound). Four samples, so that a point's
+    // coverage counts as a shell's would.
+    testing::TestCity city = testing::makeCity(200, 0);
+    const SceneImpostors impostors = bake(city);
+    const scene::CameraPose pose = lookAt({-1400, -1400, 500}, {0, 0, 0});
+    Rendered reference = render(city, impostors, RenderMode::AllLod4, pose, 1, 4);
+    Rendered points = render(city, impostors, RenderMode::Lod, pose, 1, 4);
+    Rendered shells = render(city, impostors, RenderMode::Lod, pose, 1, 4, true, {}, 2.0, true, 0.0);
+    EXPECT_EQ(shells.stats.volumeBuildingPoints, 0u);
+    EXPECT_GT(points.stats.volumeBuildingPoints, 100u);
+    EXPECT_LT(points.stats.triangles, shells.stats.triangles / 4);
+    EXPECT_GT(coverage(points.image), 0.5 * coverage(shells.image));
+    const double pointError = render::compareImages(points.image, reference.image).psnr,
+                 shellError = render::compareImages(shells.image, reference.image).psnr,
+                 apart = render::compareImages(points.image, shells.image).psnr;
+    std::printf("%u buildings as points, %llu triangles against %llu; against LOD4: points %.2f dB, shells "
+                "%.2f dB; points against shells %.2f dB\n",
+                points.stats.volumeBuildingPoints, static_cast<unsigned long long>(points.stats.triangles),
+                static_cast<unsigned long long>(shells.stats.triangles), pointError, shellError, apart);
+    EXPECT_GT(pointError, shellError - 1.0);
+    EXPECT_GT(apart, 30.0);
+    // Nearer, the same buildings are shells again.
+    Rendered near = render(city, impostors, RenderMode::Lod, lookAt({-300, -300, 120}, {0, 0, 0}), 1, 4);
+    EXPECT_LT(near.stats.volumeBuildingPoints, points.stats.volumeBuildingPoints / 4);
 }
 
 TEST_F(CityRendererTest, ACityFarFromTheOriginRendersAsAtTheOrigin) {

@@ -136,6 +136,12 @@ TEST(BaseVolumes, ListEachBuildingsRunOfIndicesAndItsBounds) {
     EXPECT_NEAR(parts[0].boundsMax.x, 20.0f, 1e-4f);
     EXPECT_NEAR(parts[1].boundsMin.x, 100.0f, 1e-4f);
     EXPECT_NEAR(parts[1].boundsMax.z, 50.0f, 1e-4f);
+    // The point form's footprint: the lowest band's, 20 x 10 m (not the set-back 16 x 6).
+    for (const VolumeBuilding& part : parts) {
+        EXPECT_NEAR(part.footprintArea, 200.0f, 1e-3f);
+        EXPECT_NEAR(part.footprintPerimeter, 60.0f, 1e-4f);
+        EXPECT_EQ(part.wallColour, wallMaterialColour(3));
+    }
     for (const VolumeBuilding& part : parts) {
         for (uint32_t i = part.firstIndex; i < part.firstIndex + part.indexCount; ++i) {
             const glm::vec3 p = m.vertices[m.indices[i]].position;

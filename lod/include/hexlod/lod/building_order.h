@@ -28,4 +28,7 @@ std::vector<glm::uvec2> nearestFirstRuns(const std::vector<render::VolumeBuildin
 std::vector<glm::uvec2> buildingRuns(const std::vector<render::VolumeBuilding>& buildings,
                                      const std::vector<uint32_t>& kept);
 
+// Appends the run (first, count) to `runs`, extending the last run where it ends at `first`.
+void appendRun(std::vector<glm::uvec2>& runs, uint32_t first, uint32_t count);
+
 } // namespace hexlod::lod

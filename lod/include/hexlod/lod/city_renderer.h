@@ -15,6 +15,7 @@
 #include "hexlod/cache/terminal_set_cache.h"
 #include "hexlod/cells/scheduler.h"
 #include "hexlod/impostor/impostor_textures.h"
+#include "hexlod/lod/building_points.h"
 #include "hexlod/lod/depth_tiles.h"
 #include "hexlod/lod/draw_pass.h"
 #include "hexlod/lod/gpu_cull.h"
@@ -70,6 +71,10 @@ struct CityRendererOptions {
     // many times the profile's maxScreenSpaceError: its billboard would show no detail the bound
     // admits. 0: never.
     double treePointsUnderSse = 2.0;
+    // A building of a batch drawn at LOD0 is a point (building_points.h) when its box's bounding
+    // sphere is smaller on screen than this many times the profile's maxScreenSpaceError, the
+    // trees' rule. 0: never.
+    double buildingPointsUnderSse = 2.0;
     // Each tree billboard covers its species' box on screen rather than its bounding sphere's
     // square, where the impostor can show nothing. Off only to check that it changes no pixel.
     bool fitTreeBillboards = true;
@@ -101,6 +106,8 @@ struct FrameStats {
     uint32_t volumesOccluded = 0, volumesBuilt = 0;
     // Buildings of the batches drawn at LOD0 or LOD1 left out: the nearer volumes hide their box.
     uint32_t volumeBuildingsOccluded = 0;
+    // Buildings of the batches drawn at LOD0 drawn as points (building_points.h), not meshes.
+    uint32_t volumeBuildingPoints = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint32_t treePoints = 0;                  // far trees submitted to the point pass
@@ -155,9 +162,10 @@ private:
         // when it is resident, else the cell's) the depth of the rings before it does not hide.
         uint8_t ring;
         // Set by drawVolumeRings: the runs (first index, count) of the mesh to draw, the whole
-        // mesh or its buildings left in view by the rings before, nearest first, adjacent ones
-        // merged.
+        // mesh or its buildings left in view by the rings before, adjacent ones merged; and the
+        // runs (first building, count) of those drawn as points.
         std::vector<glm::uvec2> runs = {};
+        std::vector<glm::uvec2> pointRuns = {};
     };
     static constexpr uint8_t kVolumeRings = 3;
     void drawTerminalMeshes(PassTimer& timer); // LOD4 meshes
@@ -177,13 +185,17 @@ private:
     // Whether the tiles hide the batch's box: its mesh's bounds when resident, else its cell's.
     bool volumeHidden(const VolumeDraw& draw, const glm::dvec3& camera, const shared::CullFrame& occlusion,
                       const OcclusionGrid& tiles) const;
-    // The runs of draw.mesh's buildings the tiles leave in view (null tiles: all of them; none:
-    // all hidden), nearest first (building_order.h); counts the hidden ones into stats.
-    std::vector<glm::uvec2> visibleBuildingRuns(const VolumeDraw& draw, const glm::dvec3& camera,
-                                                const shared::CullFrame& occlusion,
-                                                const OcclusionGrid* tiles, FrameStats& stats) const;
-    void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, FrameStats& stats,
-                     PassTimer& timer);
+    // Sets draw.runs and draw.pointRuns to draw.mesh's buildings the tiles leave in view (null
+    // tiles: all of them; none: all hidden), within LOD1's distance nearest first
+    // (building_order.h); at LOD0, those `cut` makes points as points. Counts the hidden ones
+    // and the points into stats.
+    void selectBuildingRuns(VolumeDraw& draw, const glm::dvec3& camera, const shared::CullFrame& occlusion,
+                            const OcclusionGrid* tiles, const BuildingPointCut& cut, FrameStats& stats) const;
+    // LOD0's buildings drawn as points, after their batches' meshes.
+    void drawBuildingPoints(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
+                            float screenScale, FrameStats& stats);
+    void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, float screenScale,
+                     FrameStats& stats, PassTimer& timer);
     static void drawRuns(const VolumeDraw& draw, FrameStats& stats);
 
     cells::BatchCatalog& catalog_;

@@ -20,6 +20,8 @@ struct VolumeMesh {
     // LOD1's view of the same batch (walls at inset 0 only): its elements and parameters, 0
     // until a frame draws the batch at LOD1.
     uint32_t elementBuffer = 0, parameterBuffer = 0;
+    // At inset 0 (LOD0), its buildings as points (building_points.h), in the same order.
+    uint32_t pointBuffer = 0;
     uint32_t grammar = 0;
     uint64_t bytes = 0;
     glm::dvec3 cellOrigin{0.0};

@@ -20,11 +20,18 @@ namespace hexlod::render {
 
 // One building's part of a base volume mesh: its run of indices (a building's triangles are
 // contiguous) and the cell-local bounds of its vertices, so that a renderer can leave out the
-// buildings that nearer geometry hides instead of the whole batch or nothing.
+// buildings that nearer geometry hides instead of the whole batch or nothing. A building a
+// few pixels across may be drawn as one point (lod/building_points.h), whose area and colour
+// come from its lowest band's footprint and its walls' colour.
 struct VolumeBuilding {
     uint32_t firstIndex = 0, indexCount = 0;
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};
+    float footprintArea = 0.0f, footprintPerimeter = 0.0f; // square metres, metres
+    uint32_t wallColour = 0;                               // rgba8, as the mesh's walls
 };
+
+// The colour of base volume roofs (rgba8).
+uint32_t roofColour();
 
 // Wall colour of a wall material index (the grammars' `wall_material`, 0..7; others wrap).
 uint32_t wallMaterialColour(uint16_t material);
