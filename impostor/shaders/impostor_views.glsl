@@ -70,16 +70,18 @@ void impostorViews(vec3 forward, out uvec4 views, out vec4 weights) {
 // bounding sphere's centre, in radii): `rayOrigin` on the plane through the centre across
 // `forward`, the ray running along `forward` toward the viewer. Returns albedo with coverage;
 // `normalDepth` gets the blended shape-space normal and the depth along `forward`. Only the
-// first `viewCount` views are read: a caller that uses the nearest view alone passes 1, as a
-// zero weight does not save the reads on llvmpipe, which runs every iteration that any pixel
-// of a SIMD group runs, masked, and skips a view's reads only when the loop ends before it.
+// first `viewCount` views are read, and of those the ones with a weight: a caller that uses
+// the nearest view alone passes 1. llvmpipe runs every iteration that any pixel of a SIMD
+// group runs, masked, and skips a view's reads only when the loop ends before it: the weights
+// come largest first (view_lookup.h), so the loop ends at the first zero, and a group whose
+// pixels all blend two views reads two.
 vec4 impostorReconstruct(uint layer, vec3 rayOrigin, vec3 forward, uvec4 views, vec4 weights, uint viewCount,
                          uint iterations, out vec4 normalDepth) {
     vec4 colour = vec4(0.0);
     vec4 nd = vec4(0.0);
     float coverage = 0.0;
     for (uint i = 0u; i < min(viewCount, 4u); ++i) {
-        if (weights[i] <= 0.0) continue;
+        if (weights[i] <= 0.0) break;
         vec3 viewForward = impostorViewDirection(views[i]), right, up;
         impostorBasis(viewForward, impostorLayout.w, right, up);
         float s = 0.0;

@@ -54,13 +54,13 @@ bool ViewLookup::nearestViews(const glm::vec3& direction, ViewWeights& out) cons
                            flann::SearchParams(flann::FLANN_CHECKS_UNLIMITED));
 
     const uint32_t blended = std::min<uint32_t>(4, wanted);
-    out.count = blended;
     for (uint32_t i = 0; i < 4; ++i) out.views[i] = uint32_t(indices[std::min(i, blended - 1)]);
     // A direction on (or within float noise of) a view: that view alone.
     constexpr float kExact = 1e-6f;
     float nearest = std::sqrt(std::max(squared[0], 0.0f));
     if (nearest < kExact) {
         out.weights = {1.0f, 0.0f, 0.0f, 0.0f};
+        out.count = 1;
         return true;
     }
     float cutoff = wanted > 4 ? 1.0f / std::sqrt(squared[4]) : 0.0f;
@@ -73,9 +73,20 @@ bool ViewLookup::nearestViews(const glm::vec3& direction, ViewWeights& out) cons
     if (!(total > 0.0f)) {
         // Four views tied with the fifth: equal shares keep the sum at 1.
         for (uint32_t i = 0; i < blended; ++i) out.weights[i] = 1.0f / float(blended);
-        return true;
+        total = 1.0f;
     }
-    for (uint32_t i = 0; i < blended; ++i) out.weights[i] /= total;
+    // Each share less the floor: a view drops out where its share falls to the floor, so the
+    // weights stay continuous, and the nearest view's share (at least a quarter) keeps some.
+    float kept = 0.0f;
+    for (uint32_t i = 0; i < blended; ++i) {
+        out.weights[i] = std::max(0.0f, out.weights[i] / total - kMinViewShare);
+        kept += out.weights[i];
+    }
+    out.count = 0;
+    for (uint32_t i = 0; i < blended; ++i) {
+        out.weights[i] /= kept;
+        out.count += out.weights[i] > 0.0f;
+    }
     return true;
 }
 

@@ -3,10 +3,15 @@
 // on the GPU.
 //
 // Weights. With d1 <= ... <= d5 the distances to the five nearest views, view i of the four
-// nearest gets 1/di - 1/d5, normalised to sum 1. The fourth weight reaches 0 exactly when the
-// fifth view takes its place, so the weights are continuous over the sphere; a direction on a
-// view gives that view weight 1. With fewer than five views (a 2 x 2 grid) every view takes
-// part and plain inverse distances are used.
+// nearest gets the share 1/di - 1/d5 of their sum, less kMinViewShare, normalised to sum 1.
+// The fourth weight reaches 0 exactly when the fifth view takes its place, so the weights are
+// continuous over the sphere; a direction on a view gives that view weight 1. With fewer than
+// five views (a 2 x 2 grid) every view takes part and plain inverse distances are used. The
+// floor drops the views whose share is small: they blur the blend with views far from the
+// direction, and each costs LOD3 and the tree billboards its texture reads per pixel
+// (docs/BENCHMARKS.md, "LOD3 and the billboards blend the views that matter"). Weights come
+// largest first, so the views that take part come first; the GPU's loop ends at the first
+// zero.
 #pragma once
 
 #include "hexlod/impostor/view_layout.h"
@@ -18,10 +23,14 @@
 
 namespace hexlod::impostor {
 
+// A view's share of the blend under which it drops out (see above).
+inline constexpr float kMinViewShare = 0.2f;
+static_assert(kMinViewShare < 0.25f, "the nearest of four views has a share of at least a quarter");
+
 struct ViewWeights {
-    std::array<uint32_t, 4> views{}; // view indices; unused entries repeat views[0] with weight 0
-    std::array<float, 4> weights{};  // sum to 1
-    uint32_t count = 0;              // views with a place in the blend (<= 4)
+    std::array<uint32_t, 4> views{}; // view indices, nearest first
+    std::array<float, 4> weights{};  // sum to 1, largest first; 0 past `count`
+    uint32_t count = 0;              // views with a weight above 0 (1 to 4)
 };
 
 // The GPU's lookup: a square of `resolution`^2 texels over the layout's (hemi-)octahedral
