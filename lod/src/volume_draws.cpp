@@ -103,7 +103,7 @@ void CityRenderer::selectBuildingRuns(VolumeDraw& draw, const glm::dvec3& camera
     }
     // Beyond LOD1's distance a building is a few pixels: the depth order spares little shading
     // there, and sorted, the overview's buildings split into about one draw each
-    // (docs/BENCHMARKS.md, "Far base volumes in the mesh's order").
+    // (docs/BENCHMARKS.md, "The overview: far base volumes in the mesh's order...").
     draw.runs = draw.ring < 2 ? nearestFirstRuns(buildings, kept, origin) : buildingRuns(buildings, kept);
 }
 

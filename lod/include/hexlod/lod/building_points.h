@@ -2,9 +2,10 @@
 // blend of its roof and walls, so LOD0 draws it as one point of that colour and of the area
 // it projects to (shaders/building_point.vert) instead of its shell's triangles. llvmpipe's
 // cost is per triangle, and in the thesis city's overview a hundred thousand shells of about
-// sixteen triangles each are two or three pixels across (docs/BENCHMARKS.md, "Far buildings as
-// points"). The rule is the trees' (TreePassFrame::pointDiameter): a building is a point while
-// its box's bounding sphere is smaller on screen than a multiple of the error bound.
+// sixteen triangles each are two or three pixels across (docs/BENCHMARKS.md, "The overview:
+// far base volumes in the mesh's order, far buildings as points"). The rule is the trees'
+// (TreeFrame::pointDiameter): a building is a point while its box's bounding sphere is smaller
+// on screen than a multiple of the error bound.
 #pragma once
 
 #include "hexlod/render/base_volume_mesh.h"
