@@ -19,10 +19,9 @@ std::vector<glm::uvec2> nearestFirstRuns(const std::vector<render::VolumeBuildin
     }
     std::stable_sort(order.begin(), order.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
-    std::vector<uint32_t> sorted;
-    sorted.reserve(order.size());
-    for (const auto& [distance, b] : order) sorted.push_back(b);
-    return buildingRuns(buildings, sorted);
+    std::vector<glm::uvec2> runs;
+    for (const auto& [distance, b] : order) appendRun(runs, buildings[b].firstIndex, buildings[b].indexCount);
+    return runs;
 }
 
 std::vector<glm::uvec2> buildingRuns(const std::vector<render::VolumeBuilding>& buildings,

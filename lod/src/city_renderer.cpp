@@ -440,7 +440,7 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         TreeFrame trees;
         trees.cull = &inputs.frame;
         trees.occlusionTiles = inputs.occlusionTiles;
-        trees.screenScale = float(0.5 * options_.height / std::tan(0.5 * pose.fovY));
+        trees.screenScale = float(screenScale(pose.fovY, options_.height));
         trees.pointDiameter = float(options_.treePointsUnderSse * options_.lod.maxScreenSpaceError);
         const auto [submitted, points] = trees_.prepare(billboards, trees);
         stats.treeBillboards = submitted;

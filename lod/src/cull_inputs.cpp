@@ -12,6 +12,10 @@
 
 namespace hexlod::lod {
 
+double screenScale(double fovY, uint32_t viewportHeight) {
+    return 0.5 * double(viewportHeight) / std::tan(0.5 * fovY);
+}
+
 double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,
                    uint32_t viewportHeight) {
     return geometricError * double(viewportHeight) /

@@ -5,8 +5,6 @@
 #include "hexlod/lod/occlusion_tests.h"
 #include "hexlod/render/gl_api.h"
 
-#include <cmath>
-
 namespace hexlod::lod {
 namespace {
 
@@ -21,8 +19,8 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
     setOcclusion(occlusion, pose.forward, pose.up, pose.fovY, nearPlane, farPlane, options_.width,
                  options_.height, volumeTiles_.columns(), volumeTiles_.rows(), volumeTiles_.tileSize());
     const bool test = options_.dropHidden && volumeTiles_.valid();
-    const float screenScale = float(0.5 * options_.height / std::tan(0.5 * pose.fovY));
-    const BuildingPointCut cut{screenScale,
+    const float pixelsPerMetre = float(screenScale(pose.fovY, options_.height));
+    const BuildingPointCut cut{pixelsPerMetre,
                                float(options_.buildingPointsUnderSse * options_.lod.maxScreenSpaceError)};
     OcclusionGrid tiles;
     bool drawnSinceTiles = false; // the tiles are built again only after more was drawn
@@ -52,7 +50,7 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
             selectBuildingRuns(draw, pose.position, occlusion,
                                test && !tiles.tiles.empty() ? &tiles : nullptr, cut, stats);
         }
-        drawVolumes(draws, pose.position, screenScale, stats, timer);
+        drawVolumes(draws, pose.position, pixelsPerMetre, stats, timer);
         drawnSinceTiles = drawnSinceTiles || !draws.empty();
     }
 }

@@ -79,6 +79,9 @@ void setOcclusion(shared::CullFrame& frame, const glm::dvec3& forward, const glm
                   double nearPlane, double farPlane, uint32_t width, uint32_t height, uint32_t columns,
                   uint32_t rows, uint32_t tilePixels);
 
+// Pixels one metre spans at one metre's distance, for a vertical field of view `fovY`.
+double screenScale(double fovY, uint32_t viewportHeight);
+
 // The distance from which a LOD of geometric error `error` is enough.
 double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,
                    uint32_t viewportHeight);
