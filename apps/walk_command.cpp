@@ -122,6 +122,11 @@ int runWalkCommand(const WalkOptions& o) {
     summary["notes"] = session.notes;
     summary["peak_rss_bytes"] = peakRssBytes();
     summary["cache_budget_bytes"] = session.config.cache.memoryBytes;
+    // What the memory tier cost over the walk: sets read back from the disk tier (each one
+    // decoded and uploaded again) and sets dropped for the budget.
+    const cache::CacheStats cacheStats = session.cache->stats();
+    summary["cache_disk_loads"] = cacheStats.diskHits;
+    summary["cache_evictions"] = cacheStats.evictions;
     if (!o.outDir.empty()) {
         std::ofstream(std::filesystem::path(o.outDir) / "frames.json") << perFrame.dump(1) << "\n";
         std::ofstream(std::filesystem::path(o.outDir) / "summary.json") << summary.dump(2) << "\n";

@@ -3,6 +3,7 @@
 #include <iterator>
 #include <map>
 #include <mutex>
+#include <unordered_map>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -17,19 +18,38 @@ namespace {
 // one-off giant batch does not pin its memory forever.
 constexpr size_t kDefaultRetainedBytes = size_t(2) << 30;
 
+// A request takes the smallest released block that holds it, if that block is at most this
+// fraction larger. Sets decoded from the disk tier come in every size, so a pool that matched
+// sizes exactly missed most of them: it kept the blocks of the sets the cache evicted while
+// every decode page-faulted a fresh one (docs/BENCHMARKS.md, "Released blocks reused at any
+// size close enough"). The bound caps the memory a set holds beyond its records.
+constexpr size_t kMaxSlackDivisor = 4; // a quarter
+
 class BlockPool {
 public:
+    // A released block of at least `bytes`, or nullptr.
     void* take(size_t bytes) {
         std::lock_guard lock(mutex_);
-        const auto it = free_.find(bytes);
-        if (it == free_.end()) return nullptr;
+        const auto it = free_.lower_bound(bytes);
+        if (it == free_.end() || it->first > bytes + bytes / kMaxSlackDivisor) return nullptr;
         void* pointer = it->second;
+        inUse_.emplace(pointer, it->first);
+        retained_ -= it->first;
         free_.erase(it);
-        retained_ -= bytes;
         return pointer;
     }
-    bool give(void* pointer, size_t bytes) {
+    void track(void* pointer, size_t bytes) {
         std::lock_guard lock(mutex_);
+        inUse_.emplace(pointer, bytes);
+    }
+    // Keeps a block handed out before, at its own size; false if the limit leaves no room (the
+    // caller frees it).
+    bool give(void* pointer) {
+        std::lock_guard lock(mutex_);
+        const auto it = inUse_.find(pointer);
+        if (it == inUse_.end()) return false; // not ours: never happens, but never kept either
+        const size_t bytes = it->second;
+        inUse_.erase(it);
         if (retained_ + bytes > limit_) return false;
         free_.emplace(bytes, pointer);
         retained_ += bytes;
@@ -55,7 +75,8 @@ public:
 
 private:
     std::mutex mutex_;
-    std::multimap<size_t, void*> free_;
+    std::multimap<size_t, void*> free_;       // by size
+    std::unordered_map<void*, size_t> inUse_; // every block handed out, with its size
     size_t retained_ = 0;
     size_t limit_ = kDefaultRetainedBytes;
 };
@@ -80,11 +101,17 @@ void* allocateBulk(size_t bytes) {
     // Advice only: where huge pages are off or exhausted the kernel falls back to 4 KiB pages.
     madvise(pointer, rounded, MADV_HUGEPAGE);
 #endif
+    try {
+        pool().track(pointer, rounded);
+    } catch (...) {
+        std::free(pointer);
+        throw;
+    }
     return pointer;
 }
 
-void releaseBulk(void* pointer, size_t bytes) noexcept {
-    if (!pool().give(pointer, roundedSize(bytes))) std::free(pointer);
+void releaseBulk(void* pointer) noexcept {
+    if (!pool().give(pointer)) std::free(pointer);
 }
 
 } // namespace hexlod::grammar::detail

@@ -1,5 +1,7 @@
 // The bulk allocator's pool of released blocks: kept for reuse up to its limit, and a lowered
-// limit frees what lies beyond it at once (a long-running service bounds its memory so).
+// limit frees what lies beyond it at once (a long-running service bounds its memory so); a
+// request takes the smallest pooled block that holds it, unless that one is over a quarter
+// larger.
 #include "hexlod/grammar/bulk_allocator.h"
 
 #include <gtest/gtest.h>
@@ -9,24 +11,72 @@
 namespace hexlod::grammar {
 namespace {
 
-TEST(BulkAllocator, ReleasedBlocksArePooledUpToTheLimit) {
-    setBulkPoolLimit(0); // start empty: other tests may have left blocks
-    setBulkPoolLimit(size_t(64) << 20);
-    const size_t before = bulkPoolBytes();
-    ASSERT_EQ(before, 0u);
-    {
-        std::vector<uint32_t, BulkAllocator<uint32_t>> big(size_t(3) << 20); // 12 MiB: a bulk block
-        big[0] = 1;
+using BulkWords = std::vector<uint32_t, BulkAllocator<uint32_t>>;
+constexpr size_t kMiB = size_t(1) << 20;
+
+BulkWords wordsOfMiB(size_t mebibytes) {
+    BulkWords words(mebibytes * kMiB / sizeof(uint32_t));
+    words[0] = 1;
+    return words;
+}
+
+// Starts every test from an empty pool: other tests in the process may have left blocks.
+class BulkAllocatorTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        setBulkPoolLimit(0);
+        setBulkPoolLimit(size_t(256) << 20);
     }
-    EXPECT_EQ(bulkPoolBytes(), before + (size_t(12) << 20));
+    void TearDown() override { setBulkPoolLimit(size_t(2) << 30); }
+};
+
+TEST_F(BulkAllocatorTest, ReleasedBlocksArePooledUpToTheLimit) {
+    ASSERT_EQ(bulkPoolBytes(), 0u);
+    { const BulkWords big = wordsOfMiB(12); }
+    EXPECT_EQ(bulkPoolBytes(), 12 * kMiB);
     setBulkPoolLimit(0);
     EXPECT_EQ(bulkPoolBytes(), 0u);
-    {
-        std::vector<uint32_t, BulkAllocator<uint32_t>> big(size_t(3) << 20);
-        big[0] = 1;
-    }
+    { const BulkWords big = wordsOfMiB(12); }
     EXPECT_EQ(bulkPoolBytes(), 0u); // nothing kept above a zero limit
-    setBulkPoolLimit(size_t(2) << 30);
+}
+
+TEST_F(BulkAllocatorTest, ASmallerRequestTakesTheSmallestBlockThatHoldsIt) {
+    const uint32_t* sixteen = nullptr;
+    const uint32_t* twenty = nullptr;
+    {
+        const BulkWords a = wordsOfMiB(16), b = wordsOfMiB(20), c = wordsOfMiB(8);
+        sixteen = a.data();
+        twenty = b.data();
+    }
+    ASSERT_EQ(bulkPoolBytes(), 44 * kMiB);
+    {
+        // 14 MiB: the 8 MiB block is too small, the 16 and 20 MiB ones hold it; 16 is nearer.
+        const BulkWords reused = wordsOfMiB(14);
+        EXPECT_EQ(reused.data(), sixteen);
+        EXPECT_EQ(bulkPoolBytes(), 28 * kMiB);
+    }
+    // Back at its own size, not the 14 MiB the vector asked for.
+    EXPECT_EQ(bulkPoolBytes(), 44 * kMiB);
+    {
+        const BulkWords a = wordsOfMiB(16), b = wordsOfMiB(17);
+        EXPECT_EQ(a.data(), sixteen);
+        EXPECT_EQ(b.data(), twenty); // 17 MiB is 18 in whole huge pages: 20 is within a quarter
+    }
+    EXPECT_EQ(bulkPoolBytes(), 44 * kMiB);
+}
+
+TEST_F(BulkAllocatorTest, ABlockOverAQuarterLargerIsNotTaken) {
+    { const BulkWords big = wordsOfMiB(32); }
+    ASSERT_EQ(bulkPoolBytes(), 32 * kMiB);
+    {
+        const BulkWords small = wordsOfMiB(24); // 32 is a third more than 24
+        EXPECT_EQ(bulkPoolBytes(), 32 * kMiB);
+    }
+    EXPECT_EQ(bulkPoolBytes(), 56 * kMiB);
+    {
+        const BulkWords exact = wordsOfMiB(26); // 32 is under 26 and a quarter (32.5)
+        EXPECT_EQ(bulkPoolBytes(), 24 * kMiB);
+    }
 }
 
 } // namespace
