@@ -62,6 +62,7 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"volumes_built", f.volumesBuilt},
         {"volume_buildings_occluded", f.volumeBuildingsOccluded},
         {"volume_building_points", f.volumeBuildingPoints},
+        {"volumes_shaded_at_mean", f.volumesShadedAtMean},
         {"batches_drawn", f.batchesDrawn},
         {"batches_pending", f.batchesPending},
         {"batches_rejected", f.batchesRejected},

@@ -4,6 +4,7 @@
 // vertices as lod/volume_vertex.h packs them (the ground's as MeshVertex, without elements).
 #include "gpu_types.h"
 #include "frame.glsl"
+#include "wall_colour.glsl"
 
 layout(location = HEXLOD_ATTRIBUTE_POSITION) in vec3 localPosition;
 layout(location = HEXLOD_ATTRIBUTE_NORMAL) in vec3 normal;
@@ -17,7 +18,7 @@ out vec3 vAlbedo;
 out vec3 vPosition;
 out vec3 vLocal;
 flat out float vElement; // a wall's extruded-set element (render/base_volume_mesh.h), -1 elsewhere
-out vec3 vShaded;         // lit and fogged here, for the plain walls shaded per vertex (volume.frag)
+out vec3 vShaded;         // lit and fogged here, for the volumes shaded per vertex (volume.frag)
 
 void main() {
     vPosition = cellOffset + localPosition;
@@ -26,5 +27,9 @@ void main() {
     vAlbedo = albedo.rgb;
     vLocal = localPosition;
     vElement = element;
-    vShaded = shade(albedo.rgb, normalize(normal), vPosition);
+    vec3 n = normalize(normal), shown = albedo.rgb;
+#if VOLUME_SHADING == 3
+    if (abs(n.z) < 0.5) shown = wallTextureMean(shown); // as wallTexture() does beyond its bays
+#endif
+    vShaded = shade(shown, n, vPosition);
 }

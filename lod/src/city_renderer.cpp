@@ -147,8 +147,10 @@ bool CityRenderer::init(std::string& error) {
         "", error);
     if (!programs_->lod4.valid()) return false;
     // volume.frag's VOLUME_SHADING.
-    const std::pair<render::ShaderProgram*, const char*> volumes[] = {
-        {&programs_->volume, "0"}, {&programs_->ground, "1"}, {&programs_->texturedVolume, "2"}};
+    const std::pair<render::ShaderProgram*, const char*> volumes[] = {{&programs_->volume, "0"},
+                                                                      {&programs_->ground, "1"},
+                                                                      {&programs_->texturedVolume, "2"},
+                                                                      {&programs_->meanWallVolume, "3"}};
     for (const auto& [volume, shading] : volumes) {
         *volume = render::ShaderProgram::build(
             library,

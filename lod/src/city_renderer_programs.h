@@ -11,8 +11,9 @@ namespace hexlod::lod {
 
 struct CityRenderer::Programs {
     render::ShaderProgram lod4, impostor, impostorWall; // impostor: LOD3 ray-cast; impostorWall: LOD2
-    // Base volumes: plain (the shells under terminal sets), textured (LOD0); the ground.
-    render::ShaderProgram volume, texturedVolume, ground;
+    // Base volumes: plain (the shells under terminal sets), textured (LOD0), LOD0 where its
+    // texture is its mean (wall_texture_mean.h); the ground.
+    render::ShaderProgram volume, texturedVolume, meanWallVolume, ground;
     render::ShaderProgram buildingPoint;            // LOD0's far buildings (building_points.h)
     std::map<uint32_t, render::ShaderProgram> lod1; // per building grammar with buildings
 };

@@ -3,6 +3,7 @@
 #include "hexlod/lod/building_order.h"
 #include "hexlod/lod/cull_inputs.h"
 #include "hexlod/lod/occlusion_tests.h"
+#include "hexlod/lod/wall_texture_mean.h"
 #include "hexlod/render/gl_api.h"
 
 namespace hexlod::lod {
@@ -50,7 +51,7 @@ void CityRenderer::drawVolumeRings(const std::vector<VolumeDraw>& volumes, const
             selectBuildingRuns(draw, pose.position, occlusion,
                                test && !tiles.tiles.empty() ? &tiles : nullptr, cut, stats);
         }
-        drawVolumes(draws, pose.position, pixelsPerMetre, stats, timer);
+        drawVolumes(draws, pose, pixelsPerMetre, stats, timer);
         drawnSinceTiles = drawnSinceTiles || !draws.empty();
     }
 }
@@ -153,16 +154,24 @@ void CityRenderer::drawBuildingPoints(const std::vector<VolumeDraw>& volumes, co
     if (bound) gl::glDisable(GL_PROGRAM_POINT_SIZE);
 }
 
-void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
+void CityRenderer::drawVolumes(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose,
                                float screenScale, FrameStats& stats, PassTimer& timer) {
+    const glm::dvec3& camera = pose.position;
     // LOD0 first, plain or textured, then LOD1 grammar by grammar.
     const render::ShaderProgram* bound = nullptr;
     for (const VolumeDraw& draw : volumes) {
         if (draw.mesh->indexCount == 0 || draw.runs.empty() || draw.lod0Blend < 1.0f) continue;
-        const render::ShaderProgram& program = draw.textured ? programs_->texturedVolume : programs_->volume;
+        const glm::vec3 offset(draw.mesh->cellOrigin - camera);
+        const bool mean = draw.textured && options_.shadeFarWallsAtMean &&
+                          wallTextureIsMean(offset + draw.mesh->boundsMin, offset + draw.mesh->boundsMax,
+                                            glm::vec3(pose.forward), screenScale);
+        const render::ShaderProgram& program = !draw.textured ? programs_->volume
+                                               : mean         ? programs_->meanWallVolume
+                                                              : programs_->texturedVolume;
         if (bound != &program) program.use(), bound = &program;
-        program.set("cellOffset", glm::vec3(draw.mesh->cellOrigin - camera));
+        program.set("cellOffset", offset);
         drawRuns(draw, stats);
+        stats.volumesShadedAtMean += mean;
     }
     drawBuildingPoints(volumes, camera, screenScale, stats);
     timer.end(DrawPass::Lod0);

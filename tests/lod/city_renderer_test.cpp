@@ -50,9 +50,10 @@ protected:
                     const scene::CameraPose& pose, uint32_t frames = 1, uint32_t samples = 1,
                     bool dropHidden = true, const scene::LodProfile& lod = {},
                     double treePointsUnderSse = 2.0, bool fitTreeBillboards = true,
-                    double buildingPointsUnderSse = 2.0) {
+                    double buildingPointsUnderSse = 2.0, bool shadeFarWallsAtMean = true) {
         CityRendererOptions options;
         options.buildingPointsUnderSse = buildingPointsUnderSse;
+        options.shadeFarWallsAtMean = shadeFarWallsAtMean;
         options.fitTreeBillboards = fitTreeBillboards;
         options.lod = lod;
         options.treePointsUnderSse = treePointsUnderSse;
@@ -490,6 +491,27 @@ TEST_F(CityRendererTest, BuildingsAPixelOrTwoAcrossArePointsThatLookAsTheirShell
     // Nearer, the same buildings are shells again.
     Rendered near = render(city, impostors, RenderMode::Lod, lookAt({-300, -300, 120}, {0, 0, 0}), 1, 4);
     EXPECT_LT(near.stats.volumeBuildingPoints, points.stats.volumeBuildingPoints / 4);
+}
+
+TEST_F(CityRendererTest, FarWallsShadedAtTheirMeanPerVertexLookAsTheirTexture) {
+    // The city from 2 km as shells (no points): every LOD0 batch lies beyond the depth where
+    // the wall texture is its mean (about 190 m at 96 pixels high).
+    testing::TestCity city = testing::makeCity(200, 0);
+    const SceneImpostors impostors = bake(city);
+    const scene::CameraPose far = lookAt({-1400, -1400, 500}, {0, 0, 0});
+    Rendered mean = render(city, impostors, RenderMode::Lod, far, 1, 1, true, {}, 2.0, true, 0.0);
+    Rendered textured = render(city, impostors, RenderMode::Lod, far, 1, 1, true, {}, 2.0, true, 0.0, false);
+    EXPECT_GT(mean.stats.volumesShadedAtMean, 0u);
+    EXPECT_EQ(textured.stats.volumesShadedAtMean, 0u);
+    EXPECT_EQ(mean.stats.triangles, textured.stats.triangles);
+    EXPECT_GT(coverage(mean.image), 0.01);
+    const render::ImageDifference apart = render::compareImages(mean.image, textured.image);
+    std::printf("%u batches shaded at the mean: %.1f dB from the texture\n", mean.stats.volumesShadedAtMean,
+                apart.psnr);
+    EXPECT_GT(apart.psnr, 50.0); // the fog per vertex, not per pixel, is the only difference
+    // From the city's edge, the batches around the camera keep their texture.
+    Rendered near = render(city, impostors, RenderMode::Lod, lookAt({-300, -300, 60}, {0, 0, 0}));
+    EXPECT_LT(near.stats.volumesShadedAtMean, mean.stats.volumesShadedAtMean);
 }
 
 TEST_F(CityRendererTest, ACityFarFromTheOriginRendersAsAtTheOrigin) {

@@ -78,6 +78,9 @@ struct CityRendererOptions {
     // Each tree billboard covers its species' box on screen rather than its bounding sphere's
     // square, where the impostor can show nothing. Off only to check that it changes no pixel.
     bool fitTreeBillboards = true;
+    // LOD0 batches beyond the depth where the wall texture is its mean are shaded with that
+    // mean per vertex (wall_texture_mean.h). Off only to check that it changes no pixel.
+    bool shadeFarWallsAtMean = true;
 };
 
 struct FrameStats {
@@ -108,6 +111,8 @@ struct FrameStats {
     uint32_t volumeBuildingsOccluded = 0;
     // Buildings of the batches drawn at LOD0 drawn as points (building_points.h), not meshes.
     uint32_t volumeBuildingPoints = 0;
+    // Batches drawn at LOD0 whose wall texture is its mean, shaded so (wall_texture_mean.h).
+    uint32_t volumesShadedAtMean = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint32_t treePoints = 0;                  // far trees submitted to the point pass
@@ -194,7 +199,7 @@ private:
     // LOD0's buildings drawn as points, after their batches' meshes.
     void drawBuildingPoints(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera,
                             float screenScale, FrameStats& stats);
-    void drawVolumes(const std::vector<VolumeDraw>& volumes, const glm::dvec3& camera, float screenScale,
+    void drawVolumes(const std::vector<VolumeDraw>& volumes, const scene::CameraPose& pose, float screenScale,
                      FrameStats& stats, PassTimer& timer);
     static void drawRuns(const VolumeDraw& draw, FrameStats& stats);
 

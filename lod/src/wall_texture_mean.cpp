@@ -1,0 +1,17 @@
+#include "hexlod/lod/wall_texture_mean.h"
+
+#include <algorithm>
+
+namespace hexlod::lod {
+
+bool wallTextureIsMean(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& forward,
+                       float screenScale) {
+    if (!(screenScale > 0.0f)) return false;
+    // Depth is linear, so the box's nearest depth is at a corner: per axis, the smaller end.
+    float nearest = 0.0f;
+    for (int axis = 0; axis < 3; ++axis)
+        nearest += std::min(lo[axis] * forward[axis], hi[axis] * forward[axis]);
+    return nearest >= kWallMeanCyclesPerPixel * kWallStoreyMetres * screenScale;
+}
+
+} // namespace hexlod::lod
