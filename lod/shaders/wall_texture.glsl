@@ -1,6 +1,7 @@
 // LOD0's wall texture: storeys and window bays drawn procedurally in facade coordinates
 // (metres along the wall, height), filtered to their mean where a bay is smaller than a pixel.
-// Roofs (faces that look up or down) keep their colour.
+// Roofs (faces that look up or down) keep their colour. lod/wall_texture_mean.h relies on the
+// bay's 3 m height and on the fade ending at 0.75 of a bay a pixel: change them together.
 #include "wall_colour.glsl"
 
 vec3 wallTexture(vec3 albedo, vec3 n, vec3 local) {
