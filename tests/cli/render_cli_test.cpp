@@ -50,9 +50,13 @@ TEST(RenderCli, WalkJsonAndItsFiles) {
                                       " --frames 3 --out " + dir + "/out --png --impostor-grid 2 --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const Json j = Json::parse(r.out);
-    for (const char* key : {"frames", "median_frame_ms", "p95_frame_ms", "median_triangles",
-                            "terminals_per_lod", "peak_resident_bytes", "notes", "cache_hit_rate"})
+    for (const char* key :
+         {"frames", "median_frame_ms", "p95_frame_ms", "median_triangles", "terminals_per_lod",
+          "peak_resident_bytes", "notes", "cache_hit_rate", "cache_disk_loads", "cache_evictions"})
         EXPECT_TRUE(j.contains(key)) << key;
+    // A fresh cache of the default budget holds this scene: nothing read back, nothing dropped.
+    EXPECT_EQ(j["cache_disk_loads"], 0);
+    EXPECT_EQ(j["cache_evictions"], 0);
     EXPECT_EQ(j["frames"], 3);
     EXPECT_GT(j["median_triangles"].get<double>(), 0.0);
     EXPECT_TRUE(j["terminals_per_lod"].is_object());
@@ -92,6 +96,7 @@ TEST(RenderCli, WalkJsonAndItsFiles) {
     EXPECT_EQ(rows, frames.size());
     // The base volumes resident are a part of the GPU's bytes.
     for (const Json& frame : frames) {
+        EXPECT_TRUE(frame["volumes_shaded_at_mean"].is_number_unsigned());
         EXPECT_GT(frame["volume_bytes"].get<uint64_t>(), 0u);
         EXPECT_LT(frame["volume_bytes"].get<uint64_t>(), frame["gpu_bytes"].get<uint64_t>());
     }
