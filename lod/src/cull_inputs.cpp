@@ -18,8 +18,7 @@ double screenScale(double fovY, uint32_t viewportHeight) {
 
 double lodDistance(double geometricError, const scene::LodProfile& profile, double fovY,
                    uint32_t viewportHeight) {
-    return geometricError * double(viewportHeight) /
-           (2.0 * std::tan(0.5 * fovY) * profile.maxScreenSpaceError);
+    return geometricError * screenScale(fovY, viewportHeight) / profile.maxScreenSpaceError;
 }
 
 shared::CullFrame makeCullFrame(const cells::Frustum& frustum, const scene::LodProfile& profile, double fovY,

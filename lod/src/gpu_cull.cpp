@@ -2,6 +2,7 @@
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/impostor/impostor_textures.h"
 #include "hexlod/lod/terminal_arena.h"
+#include "hexlod/lod/wall_texture_mean.h"
 #include "hexlod/render/gl_api.h"
 
 #include <algorithm>
@@ -23,6 +24,7 @@ constexpr uint32_t kOcclusionUnit = 0;
 render::ShaderLibrary lodShaderLibrary() {
     render::ShaderLibrary library = impostor::impostorShaderLibrary();
     library.add(hexlodLodShaders());
+    library.add("wall_texture_sizes.glsl", wallTextureSizesGlsl());
     return library;
 }
 

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <limits>
 
 namespace hexlod::lod {
@@ -39,6 +40,18 @@ TEST(WallTextureMean, BoxesAroundOrBehindTheCameraAndBadInputsAreNot) {
     EXPECT_FALSE(wallTextureIsMean({nan, 300, 0}, {10, 320, 30}, kNorth, kScreenScale));
     EXPECT_FALSE(wallTextureIsMean({-10, 300, 0}, {10, 320, 30}, {nan, nan, nan}, kScreenScale));
     EXPECT_FALSE(wallTextureIsMean({-inf, 300, 0}, {10, 320, 30}, {1, 0, 0}, kScreenScale));
+}
+
+TEST(WallTextureMean, TheShaderReadsTheSameSizes) {
+    float bay = 0.0f, storey = 0.0f, cycles = 0.0f;
+    ASSERT_EQ(std::sscanf(wallTextureSizesGlsl().c_str(),
+                          "const vec2 kWallBay = vec2(%f, %f); // metres along the wall, up it\n"
+                          "const float kWallMeanCyclesPerPixel = %f;",
+                          &bay, &storey, &cycles),
+              3);
+    EXPECT_EQ(bay, kWallBayMetres);
+    EXPECT_EQ(storey, kWallStoreyMetres);
+    EXPECT_EQ(cycles, kWallMeanCyclesPerPixel);
 }
 
 } // namespace
