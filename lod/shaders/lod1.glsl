@@ -60,15 +60,18 @@ Lod1Hit lod1Walk(uint rule, Lod1Scope s, Lod1Context c, vec2 point) {
         uint arguments = lod1RuleArgumentCount[rule];
         uint chosen = 0xffffffffu;
         // llvmpipe runs every branch for every pixel (masked, not branched around), and each
-        // argument evaluation runs every case of lod1Argument, so the ops share three passes
-        // over their arguments instead of one or more each. The first: Cond's and Repeat's
-        // value, Choose's total, Split's sums.
+        // argument evaluation runs every case of lod1Argument, so each argument is evaluated
+        // once, into values[], and only for the ops the walk takes; the passes over them after
+        // are plain reads. The first: Cond's and Repeat's value, Choose's total, Split's sums.
         bool split = op == 1u && axis < 2u, choose = op == 10u;
+        bool walked = split || choose || op == 6u || (op == 2u && axis < 2u);
+        float values[LOD1_MAX_ARGUMENTS];
         float first = 0.0, total = 0.0;
         bool valid = true;
         double absoluteSum = 0.0, relativeSum = 0.0;
-        for (uint i = 0u; i < (op == 7u || op == 11u ? 0u : arguments); ++i) {
+        for (uint i = 0u; i < (walked ? arguments : 0u); ++i) {
             float value = lod1Arg(rule, i, s, c);
+            values[i] = value;
             if (i == 0u) first = value;
             bool finite = !(isnan(value) || isinf(value) || value < 0.0);
             valid = valid && finite;
@@ -87,7 +90,7 @@ Lod1Hit lod1Walk(uint rule, Lod1Scope s, Lod1Context c, vec2 point) {
         float offset = 0.0, cumulative = 0.0;
         uint picked = arguments - 1u;
         for (uint i = 0u; i < (split || (choose && valid) ? arguments : 0u); ++i) {
-            float value = lod1Arg(rule, i, s, c);
+            float value = values[i];
             cumulative += value;
             if (choose && pick < cumulative) {
                 picked = i;
@@ -101,7 +104,7 @@ Lod1Hit lod1Walk(uint rule, Lod1Scope s, Lod1Context c, vec2 point) {
         float part = 0.0;
         float along = point[min(axis, 1u)] - s.origin[min(axis, 1u)];
         for (uint k = split ? arguments : 0u; k-- > 0u;) {
-            float size = lod1Arg(rule, k, s, c);
+            float size = values[k];
             if (isnan(size) || isinf(size) || size < 0.0) size = 0.0;
             bool relative = lod1ArgumentRelative[lod1RuleArguments[rule] + k] != 0u;
             part = float(double(size) * (relative ? relativeScale : absoluteScale));

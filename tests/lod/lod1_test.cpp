@@ -83,9 +83,24 @@ TEST_F(Lod1Test, BytecodeTranslatesToGlslInTheSameOrder) {
     std::string all = generateLod1Grammar(g);
     EXPECT_NE(all.find("float lod1Argument("), std::string::npos);
     EXPECT_NE(all.find("lod1RuleKey"), std::string::npos);
-    // Every argument becomes one case.
-    for (size_t a = 0; a < g.arguments.size(); ++a)
-        EXPECT_NE(all.find("case " + std::to_string(a) + "u: return"), std::string::npos) << a;
+    // Every argument of a face subdivision or a pick becomes one case; the arguments of the
+    // ops that end the walk (Extrude, Shape...) none, as the walk never evaluates them.
+    uint32_t evaluated = 0, mostArguments = 1;
+    for (const grammar::CompiledRule& rule : g.rules) {
+        const bool walks = rule.op == grammar::RuleOp::Cond || rule.op == grammar::RuleOp::Choose ||
+                           ((rule.op == grammar::RuleOp::Split || rule.op == grammar::RuleOp::Repeat) &&
+                            rule.axis != grammar::Axis::Z);
+        if (walks) mostArguments = std::max(mostArguments, rule.argumentCount);
+        for (uint32_t a = rule.firstArgument; a < rule.firstArgument + rule.argumentCount; ++a) {
+            const bool found = all.find("case " + std::to_string(a) + "u: return") != std::string::npos;
+            EXPECT_EQ(found, walks) << grammar::ruleOpName(rule.op) << " argument " << a;
+            evaluated += walks;
+        }
+    }
+    EXPECT_GT(evaluated, 0u);
+    EXPECT_LT(evaluated, g.arguments.size());
+    EXPECT_NE(all.find("#define LOD1_MAX_ARGUMENTS " + std::to_string(mostArguments) + "\n"),
+              std::string::npos);
     // rand() keeps its call site as the key's last word.
     bool sawRandom = false;
     for (const grammar::Expression& e : g.expressions) {
