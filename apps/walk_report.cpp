@@ -66,6 +66,8 @@ nlohmann::json frameJson(const lod::FrameStats& f) {
         {"batches_drawn", f.batchesDrawn},
         {"batches_pending", f.batchesPending},
         {"batches_rejected", f.batchesRejected},
+        {"batches_uploaded", f.batchesUploaded},
+        {"uploads_prepared", f.uploadsPrepared},
         {"cache_lookups", f.cacheLookups},
         {"cache_hits", f.cacheHits},
         {"tree_billboards", f.treeBillboards},

@@ -256,11 +256,14 @@ FrameDecision Scheduler::update(const Camera& camera, double timeSeconds) {
 
 void Scheduler::run(Job job) {
     bool ok = true;
+    std::shared_ptr<const grammar::TerminalSet> set;
     try {
-        cache_.getOrGenerate(job.key, [&] { return catalog_.generate(job.batch, job.inputs, job.key); });
+        set =
+            cache_.getOrGenerate(job.key, [&] { return catalog_.generate(job.batch, job.inputs, job.key); });
     } catch (const std::exception&) {
         ok = false;
     }
+    if (set && options_.onBackgroundSet) options_.onBackgroundSet(job.key.digest(), set);
     std::lock_guard lock(mutex_);
     const uint64_t digest = job.key.digest();
     inFlight_.erase(digest);

@@ -114,6 +114,9 @@ bool CityRenderer::init(std::string& error) {
     scheduling.workers = options_.schedulerWorkers;
     scheduling.prefetchInBackground = true; // with no workers; they prefetch themselves
     scheduling.maxBatchesPerFrame = options_.maxBatchesPerFrame;
+    scheduling.onBackgroundSet = [bounds = preparedBounds_](uint64_t key, const auto& set) {
+        bounds->prepare(key, set);
+    };
     // Trees: geometry near the camera, billboards beyond; the reference draws every tree as
     // geometry and the forced coarse modes every tree as a billboard.
     const bool speciesImpostors = impostors_ && !impostors_->species.empty();
@@ -304,7 +307,12 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
                 std::shared_ptr<const grammar::TerminalSet> set = options_.schedulerWorkers > 0
                                                                       ? cache_.findInMemory(catalog_.key(b))
                                                                       : cache_.find(catalog_.key(b));
-                const ArenaBatch* resident = set ? arena_.acquire(catalog_.key(b).digest(), *set) : nullptr;
+                const uint64_t digest = catalog_.key(b).digest();
+                const ArenaBatch* resident = nullptr;
+                if (set)
+                    resident = arena_.acquire(digest, *set,
+                                              arena_.resident(digest) ? std::vector<PageBounds>{}
+                                                                      : preparedBounds_->take(digest, *set));
                 const bool building = catalog_.batch(b).grammar < buildingGrammars;
                 if (!resident) {
                     ++(set ? stats.batchesRejected : stats.batchesPending);
@@ -362,6 +370,8 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
         }
     }
     stats.uploadMs = millisecondsSince(stageStart);
+    stats.batchesUploaded = arena_.stats().uploads;
+    stats.uploadsPrepared = arena_.stats().preparedUploads;
 
     // 3. The opaque base volumes and ground, which hide what stands behind them: drawn first,
     // so that the cull pass can drop hidden terminals before any of their work is done.
@@ -489,9 +499,10 @@ FrameStats CityRenderer::render(const scene::CameraPose& given, double timeSecon
     stats.cacheHits = cacheAfter.hits - cacheBefore.hits;
     stats.volumesBuilt = volumes_.stats().built;
     stats.volumeBytes = volumes_.stats().residentBytes;
-    stats.gpuBytes = arena_.byteSize() + arena_.stats().pageTableBytes + cull_.byteSize() +
-                     shapes_.byteSize() + stats.volumeBytes + ground_.byteSize() + trees_.byteSize() +
-                     depthTiles_.byteSize() + volumeTiles_.byteSize() + impostorQuads_.byteSize() +
+    stats.gpuBytes = arena_.byteSize() + arena_.stats().pageTableBytes + preparedBounds_->byteSize() +
+                     cull_.byteSize() + shapes_.byteSize() + stats.volumeBytes + ground_.byteSize() +
+                     trees_.byteSize() + depthTiles_.byteSize() + volumeTiles_.byteSize() +
+                     impostorQuads_.byteSize() +
                      uint64_t(options_.width) * options_.height * 12 * options_.samples;
     stats.impostorBytes = impostorTextures_.byteSize();
     return stats;

@@ -56,6 +56,7 @@ void TerminalArena::beginFrame(uint64_t frame) {
     stats_.uploads = 0;
     stats_.uploadedBytes = 0;
     stats_.rejected = 0;
+    stats_.preparedUploads = 0;
 }
 
 bool TerminalArena::evictOne() {
@@ -76,7 +77,8 @@ bool TerminalArena::evictOne() {
     return true;
 }
 
-const ArenaBatch* TerminalArena::acquire(uint64_t key, const grammar::TerminalSet& set) {
+const ArenaBatch* TerminalArena::acquire(uint64_t key, const grammar::TerminalSet& set,
+                                         std::vector<PageBounds> prepared) {
     if (auto it = slots_.find(key); it != slots_.end()) {
         it->second.lastUsed = frame_;
         return &it->second.batch;
@@ -111,7 +113,9 @@ const ArenaBatch* TerminalArena::acquire(uint64_t key, const grammar::TerminalSe
                                  set.records.data() + first);
         p += run;
     }
-    slot.batch.bounds = pageBounds(set);
+    const bool usePrepared = needed > 0 && prepared.size() == needed;
+    slot.batch.bounds = usePrepared ? std::move(prepared) : pageBounds(set);
+    stats_.preparedUploads += usePrepared;
     stats_.pageTableBytes += pageTableBytes(slot.batch);
     stats_.residentRecords += records;
     ++stats_.uploads;

@@ -11,7 +11,9 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <set>
+#include <thread>
 
 namespace hexlod::cells {
 
@@ -312,6 +314,54 @@ TEST_F(SchedulerTest, APrefetchThreadChangesNoFrame) {
     withThread.drain();
     const cache::CacheStats stats = threadCache.stats();
     EXPECT_EQ(stats.generations, stats.memoryEntries); // each batch generated once, by one thread
+}
+
+// The hook sees every set a background thread read or generated, on that thread, as the cache
+// holds it, and none that update() made ready itself.
+TEST_F(SchedulerTest, BackgroundThreadsHandTheirSetsToTheHook) {
+    const CellBounds& target = middleCell();
+    for (const uint32_t workers : {0u, 2u}) {
+        cache::TerminalSetCache cache{cache::CacheOptions{}};
+        std::mutex mutex;
+        std::map<uint64_t, std::shared_ptr<const grammar::TerminalSet>> handed;
+        bool onUpdateThread = false;
+        const std::thread::id updateThread = std::this_thread::get_id();
+        SchedulerOptions o = options(0, 3.0, workers);
+        o.prefetchInBackground = true;
+        o.onBackgroundSet = [&](uint64_t key, const std::shared_ptr<const grammar::TerminalSet>& set) {
+            std::lock_guard lock(mutex);
+            onUpdateThread = onUpdateThread || std::this_thread::get_id() == updateThread;
+            EXPECT_TRUE(handed.emplace(key, set).second) << "a set handed over twice";
+        };
+        Scheduler scheduler(catalog_, cache, o);
+        Camera camera = southOf(target, 3000.0);
+        std::set<uint32_t> background, inUpdate;
+        for (int frame = 0; frame < 30; ++frame) {
+            const FrameDecision decision = scheduler.update(camera, frame * 1.0);
+            for (size_t i = 0; i < decision.started.size(); ++i) {
+                // Without workers, the started batches before the prefetch ones were made ready
+                // in update().
+                const bool prefetch = i >= decision.started.size() - decision.prefetchStarted;
+                (workers > 0 || prefetch ? background : inUpdate).insert(decision.started[i]);
+            }
+            scheduler.drain();
+            camera.position.y += 100.0;
+        }
+        ASSERT_FALSE(background.empty()) << workers << " workers";
+        std::lock_guard lock(mutex);
+        EXPECT_FALSE(onUpdateThread);
+        for (const uint32_t batch : background) {
+            const auto it = handed.find(catalog_.key(batch).digest());
+            ASSERT_NE(it, handed.end()) << "batch " << batch << ", " << workers << " workers";
+            EXPECT_EQ(it->second, cache.findInMemory(catalog_.key(batch)));
+        }
+        for (const uint32_t batch : inUpdate) {
+            if (!background.contains(batch)) {
+                EXPECT_FALSE(handed.contains(catalog_.key(batch).digest()));
+            }
+        }
+        EXPECT_EQ(handed.size(), background.size());
+    }
 }
 
 TEST_F(SchedulerTest, WorkersGenerateInTheBackgroundWithoutBlockingUpdate) {

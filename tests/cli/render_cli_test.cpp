@@ -97,6 +97,8 @@ TEST(RenderCli, WalkJsonAndItsFiles) {
     // The base volumes resident are a part of the GPU's bytes.
     for (const Json& frame : frames) {
         EXPECT_TRUE(frame["volumes_shaded_at_mean"].is_number_unsigned());
+        // Of the batches uploaded, those whose page bounds a background thread prepared.
+        EXPECT_LE(frame["uploads_prepared"].get<uint32_t>(), frame["batches_uploaded"].get<uint32_t>());
         EXPECT_GT(frame["volume_bytes"].get<uint64_t>(), 0u);
         EXPECT_LT(frame["volume_bytes"].get<uint64_t>(), frame["gpu_bytes"].get<uint64_t>());
     }

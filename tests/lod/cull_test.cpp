@@ -6,6 +6,7 @@
 #include "hexlod/lod/cpu_cull.h"
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/lod/page_bounds.h"
+#include "hexlod/lod/prepared_page_bounds.h"
 #include "hexlod/lod/terminal_arena.h"
 #include "hexlod/render/gl_api.h"
 
@@ -15,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <thread>
 #include <tuple>
 
 namespace hexlod::lod {
@@ -374,6 +376,96 @@ TEST_F(CullTest, ArenaEvictsTheLeastRecentlyDrawnWhenFull) {
     TerminalSet huge = randomSet(random, 4000, 2, 10);
     EXPECT_FALSE(arena.acquire(5, huge));
     EXPECT_FALSE(arena.create(0, error));
+}
+
+// Page bounds are compared field by field: the struct has padding.
+void expectSameBounds(const std::vector<PageBounds>& got, const std::vector<PageBounds>& expected) {
+    ASSERT_EQ(got.size(), expected.size());
+    for (size_t p = 0; p < got.size(); ++p) {
+        EXPECT_EQ(got[p].sphere, expected[p].sphere) << p;
+        EXPECT_EQ(got[p].boxMin, expected[p].boxMin) << p;
+        EXPECT_EQ(got[p].boxMax, expected[p].boxMax) << p;
+        EXPECT_EQ(got[p].faceCount, expected[p].faceCount) << p;
+        for (uint32_t f = 0; f < got[p].faceCount; ++f) EXPECT_EQ(got[p].faces[f], expected[p].faces[f]) << p;
+        EXPECT_EQ(got[p].firstBuilding, expected[p].firstBuilding) << p;
+        EXPECT_EQ(got[p].lastBuilding, expected[p].lastBuilding) << p;
+    }
+}
+
+// Bounds prepared on another thread are the ones the frame would compute, handed over once,
+// and only for a set of their size; they go when their set does.
+TEST(PreparedPageBoundsTest, HandsOverEachSetsBoundsOnceWhileTheSetLives) {
+    std::mt19937 random(4);
+    auto a = std::make_shared<const TerminalSet>(randomSet(random, 1000, 2, 50, true));
+    auto b = std::make_shared<const TerminalSet>(randomSet(random, 130, 2, 50, true));
+    PreparedPageBounds prepared;
+    std::thread([&] {
+        prepared.prepare(1, a);
+        prepared.prepare(2, b);
+        prepared.prepare(3, nullptr); // nothing to prepare
+    }).join();
+    EXPECT_EQ(prepared.size(), 2u);
+    EXPECT_EQ(prepared.byteSize(), (16u + 3u) * sizeof(PageBounds));
+    EXPECT_TRUE(prepared.take(9, *a).empty()); // never prepared
+    expectSameBounds(prepared.take(1, *a), pageBounds(*a));
+    EXPECT_TRUE(prepared.take(1, *a).empty()); // handed over already
+    EXPECT_TRUE(prepared.take(2, *a).empty()); // 3 pages prepared, the set taking them has 16
+    EXPECT_EQ(prepared.size(), 0u);
+    // A set the cache lets go of takes its bounds along.
+    prepared.prepare(2, b);
+    b.reset();
+    EXPECT_TRUE(prepared.take(1, *a).empty());
+    EXPECT_EQ(prepared.size(), 0u);
+    EXPECT_EQ(prepared.byteSize(), 0u);
+}
+
+TEST(PreparedPageBoundsTest, ThreadsPrepareAndTakeAtOnce) {
+    std::mt19937 random(5);
+    std::vector<std::shared_ptr<const TerminalSet>> sets;
+    for (int i = 0; i < 32; ++i)
+        sets.push_back(std::make_shared<const TerminalSet>(randomSet(random, 200 + 37 * i, 2, 50, true)));
+    PreparedPageBounds prepared;
+    std::vector<std::thread> threads;
+    for (size_t t = 0; t < 4; ++t)
+        threads.emplace_back([&, t] {
+            for (size_t i = t; i < sets.size(); i += 4) prepared.prepare(i, sets[i]);
+        });
+    size_t taken = 0;
+    for (int round = 0; round < 4; ++round)
+        for (size_t i = 0; i < sets.size(); ++i) {
+            const std::vector<PageBounds> bounds = prepared.take(i, *sets[i]);
+            if (bounds.empty()) continue;
+            expectSameBounds(bounds, pageBounds(*sets[i]));
+            ++taken;
+        }
+    for (std::thread& t : threads) t.join();
+    for (size_t i = 0; i < sets.size(); ++i)
+        if (!prepared.take(i, *sets[i]).empty()) ++taken;
+    EXPECT_EQ(taken, sets.size()); // each set's bounds handed over exactly once
+}
+
+// The arena uploads a set with prepared bounds as they are, and computes its own where the
+// prepared ones do not fit the set.
+TEST_F(CullTest, ArenaTakesPageBoundsPreparedOffTheFrame) {
+    TerminalArena arena;
+    std::string error;
+    ASSERT_TRUE(arena.create(4096, error)) << error;
+    std::mt19937 random(6);
+    const TerminalSet a = randomSet(random, 1000, 2, 50, true), b = randomSet(random, 700, 2, 50, true);
+    arena.beginFrame(1);
+    std::vector<PageBounds> forA = pageBounds(a);
+    forA[3].firstBuilding = 123456; // marks them as the prepared ones
+    const ArenaBatch* first = arena.acquire(1, a, forA);
+    ASSERT_NE(first, nullptr);
+    EXPECT_EQ(first->bounds[3].firstBuilding, 123456u);
+    const ArenaBatch* second = arena.acquire(2, b, pageBounds(a)); // 16 pages for a set of 11
+    ASSERT_NE(second, nullptr);
+    expectSameBounds(second->bounds, pageBounds(b));
+    EXPECT_EQ(arena.stats().uploads, 2u);
+    EXPECT_EQ(arena.stats().preparedUploads, 1u);
+    arena.beginFrame(2);
+    EXPECT_EQ(arena.acquire(1, a)->bounds[3].firstBuilding, 123456u); // resident: kept as uploaded
+    EXPECT_EQ(arena.stats().preparedUploads, 0u);
 }
 
 // The cull pass binds the arena as one storage block: asked for more than the GL's largest,

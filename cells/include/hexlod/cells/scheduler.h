@@ -34,6 +34,10 @@
 //   not left pending, so a scripted camera still sees the same cells ready in every frame;
 //   only where the time goes changes.
 //
+// - onBackgroundSet, when set, is called on the background thread that read or generated a
+//   set, once the cache holds it, with the set and its key's digest: work each frame would
+//   otherwise do on a new set (the renderer's page bounds) is done there, off the frame.
+//
 // Readiness is checked with TerminalSetCache::find, which also marks visible sets as recently
 // used, so the LRU evicts what the camera no longer looks at first. A batch whose generation
 // threw is not requested again (failedBatches counts them).
@@ -50,6 +54,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -84,6 +89,10 @@ struct SchedulerOptions {
     // further away trees are billboards, and their terminal sets (most of a city's terminals)
     // are neither generated nor drawn.
     double treeGeometricError = 0.0;
+    // Called on a background thread (workers, or the prefetch thread) after it read or
+    // generated a set (see above); it must not throw. Never called from update().
+    std::function<void(uint64_t keyDigest, const std::shared_ptr<const grammar::TerminalSet>& set)>
+        onBackgroundSet;
 };
 
 struct CellDecision {

@@ -21,6 +21,7 @@
 #include "hexlod/lod/gpu_cull.h"
 #include "hexlod/lod/ground_pass.h"
 #include "hexlod/lod/occlusion_tests.h"
+#include "hexlod/lod/prepared_page_bounds.h"
 #include "hexlod/lod/quad_indices.h"
 #include "hexlod/lod/scene_impostors.h"
 #include "hexlod/lod/shape_table.h"
@@ -114,13 +115,17 @@ struct FrameStats {
     // Batches drawn at LOD0 whose wall texture is its mean, shaded so (wall_texture_mean.h).
     uint32_t volumesShadedAtMean = 0;
     uint32_t visibleCells = 0, batchesDrawn = 0, batchesPending = 0, batchesRejected = 0;
+    // Batches uploaded to the arena this frame, and of those, the ones whose page bounds were
+    // prepared off the frame (PreparedPageBounds).
+    uint32_t batchesUploaded = 0, uploadsPrepared = 0;
     uint32_t treeBillboards = 0;              // submitted (near ones are dropped on the GPU)
     uint32_t treePoints = 0;                  // far trees submitted to the point pass
     uint32_t treeBillboardsOccluded = 0;      // of those, dropped whole as hidden (DepthTiles)
     uint32_t lod3Occluded = 0;                // LOD3 and LOD3-LOD2 entries dropped as hidden
     uint64_t cacheLookups = 0, cacheHits = 0; // this frame's
     uint64_t cacheBytes = 0;                  // terminal sets in the cache's memory tier
-    // The arena (and its page tables, on the CPU), draw lists, meshes, base volumes, frame target.
+    // The arena (and its page tables, on the CPU, prepared ones included), draw lists, meshes,
+    // base volumes, frame target.
     uint64_t gpuBytes = 0;
     uint64_t volumeBytes = 0;   // of gpuBytes, the base volumes resident (VolumeCache)
     uint64_t impostorBytes = 0; // impostor textures
@@ -208,6 +213,8 @@ private:
     const render::TerminalMeshLibrary& meshes_;
     const SceneImpostors* impostors_;
     CityRendererOptions options_;
+    // Filled by the scheduler's background thread, so it is shared with the scheduler's hook.
+    std::shared_ptr<PreparedPageBounds> preparedBounds_ = std::make_shared<PreparedPageBounds>();
     std::unique_ptr<cells::Scheduler> scheduler_;
     std::unique_ptr<Programs> programs_;
     render::Framebuffer target_;

@@ -24,10 +24,11 @@ struct ArenaStats {
     uint64_t residentRecords = 0;
     uint32_t residentBatches = 0;
     uint32_t freePages = 0;
-    uint32_t uploads = 0;       // since the last beginFrame()
-    uint64_t uploadedBytes = 0; // since the last beginFrame()
-    uint64_t evictions = 0;     // in total
-    uint32_t rejected = 0;      // since the last beginFrame(): batches that did not fit
+    uint32_t uploads = 0;         // since the last beginFrame()
+    uint64_t uploadedBytes = 0;   // since the last beginFrame()
+    uint64_t evictions = 0;       // in total
+    uint32_t rejected = 0;        // since the last beginFrame(): batches that did not fit
+    uint32_t preparedUploads = 0; // since the last beginFrame(): uploads with bounds prepared off the frame
     // The resident batches' page lists and page bounds (ArenaBatch), held on the CPU beside
     // the buffer: about 90 bytes a page of 64 records.
     uint64_t pageTableBytes = 0;
@@ -57,8 +58,11 @@ public:
     // last page partly filled) and their bounds, uploading it if it is not resident. To make
     // room it evicts batches not used in the current frame, oldest use first; null when even
     // that is not enough (the frame then draws the batch at a coarser LOD). The pointer stays
-    // valid until the batch is evicted, which no acquire() of the same frame does.
-    const ArenaBatch* acquire(uint64_t key, const grammar::TerminalSet& set);
+    // valid until the batch is evicted, which no acquire() of the same frame does. An upload
+    // takes `prepared` as the set's page bounds when they are as many as its pages
+    // (PreparedPageBounds), and computes them otherwise.
+    const ArenaBatch* acquire(uint64_t key, const grammar::TerminalSet& set,
+                              std::vector<PageBounds> prepared = {});
     bool resident(uint64_t key) const { return slots_.count(key) != 0; }
 
     uint32_t buffer() const { return buffer_; }
