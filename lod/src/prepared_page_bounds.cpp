@@ -6,11 +6,14 @@
 namespace hexlod::lod {
 namespace {
 
-uint64_t bytesOf(const std::vector<PageBounds>& bounds) { return bounds.size() * sizeof(PageBounds); }
+uint64_t bytesOf(const std::vector<PageBounds>& bounds) {
+    return bounds.size() * sizeof(PageBounds);
+}
 
 } // namespace
 
-void PreparedPageBounds::prepare(uint64_t key, const std::shared_ptr<const grammar::TerminalSet>& set) noexcept {
+void PreparedPageBounds::prepare(uint64_t key,
+                                 const std::shared_ptr<const grammar::TerminalSet>& set) noexcept {
     if (!set) return;
     try {
         Entry entry{set, pageBounds(*set)};
