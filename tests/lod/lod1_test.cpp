@@ -13,7 +13,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <array>
+#include <filesystem>
+#include <fstream>
 #include <random>
+
+#include <unistd.h>
 
 namespace hexlod::lod {
 namespace {
@@ -167,16 +172,16 @@ TEST_F(Lod1GpuTest, InterpretersLinkWithoutParametersOrWithUnreadOnes) {
     }
 }
 
-// Draws one batch's walls face-on with LOD1 and compares, for every covered pixel, what the
-// GLSL walk found with the CPU walk at the point the pixel reports.
-TEST_F(Lod1GpuTest, TheGlslWalkFindsWhatTheCpuWalkFinds) {
-    testing::TestCity city = testing::makeCity(30, 0);
-    const cells::BatchCatalog& catalog = *city.catalog;
-    uint32_t batch = 0;
-    while (batch < catalog.batchCount() &&
-           catalog.grammar(catalog.batch(batch).grammar).name != "residential")
-        ++batch;
-    ASSERT_LT(batch, catalog.batchCount());
+// What the GLSL walk found, against the CPU walk, over the pixels of one facade.
+struct WalkComparison {
+    uint64_t compared = 0, agreed = 0;
+    std::array<uint64_t, 3> outcomes{}; // the CPU walk's, by Lod1Outcome
+};
+
+// Draws batch `batch`'s walls with LOD1, looking at its first element's facade straight on
+// from 40 m in front of its middle, and compares, for every third covered pixel each way,
+// what the GLSL walk found with the CPU walk at the point the pixel reports.
+void compareWalks(const cells::BatchCatalog& catalog, uint32_t batch, WalkComparison& result) {
     const uint32_t grammarIndex = catalog.batch(batch).grammar;
     const grammar::CompiledGrammar& g = catalog.grammar(grammarIndex).grammar;
     const grammar::ExtrudedSet extruded = catalog.expandExtruded(batch);
@@ -255,15 +260,67 @@ TEST_F(Lod1GpuTest, TheGlslWalkFindsWhatTheCpuWalkFinds) {
             const Lod1Hit cpu =
                 lod1Query(g, extruded, buildingOf(extruded, 0), 0, point, catalog.scene().config.seed);
             ++compared;
+            ++result.outcomes.at(size_t(cpu.outcome));
             if (uint32_t(id[0]) == uint32_t(cpu.outcome) + 1 &&
                 (cpu.outcome != Lod1Outcome::Terminal || uint32_t(id[1]) == cpu.shape)) {
                 ++agreed;
             }
         }
     }
-    ASSERT_GT(compared, 200u);
+    result.compared = compared;
+    result.agreed = agreed;
+}
+
+TEST_F(Lod1GpuTest, TheGlslWalkFindsWhatTheCpuWalkFinds) {
+    testing::TestCity city = testing::makeCity(30, 0);
+    const cells::BatchCatalog& catalog = *city.catalog;
+    uint32_t batch = 0;
+    while (batch < catalog.batchCount() &&
+           catalog.grammar(catalog.batch(batch).grammar).name != "residential")
+        ++batch;
+    ASSERT_LT(batch, catalog.batchCount());
+    WalkComparison walks;
+    compareWalks(catalog, batch, walks);
+    ASSERT_GT(walks.compared, 200u);
     // Pixels on a boundary between two terminals may fall either side of it: allow 2 %.
-    EXPECT_GT(double(agreed) / double(compared), 0.98) << agreed << " of " << compared;
+    EXPECT_GT(double(walks.agreed) / double(walks.compared), 0.98)
+        << walks.agreed << " of " << walks.compared;
+}
+
+// A facade that peels one metre every two steps, 60 m tall: the walk reaches a terminal up to
+// the step limit (32 m up) and stops above it, on the GPU where the CPU does. The metre under
+// the limit is chosen in the limit's last step, which must stop too.
+TEST_F(Lod1GpuTest, BothWalksStopAtTheSameStepLimit) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("hexlod_lod1_steps_" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "deep.grammar") << "param floors = 1 in [1, 300];\n"
+                                           "shape wall (width = 1, height = 1, depth = 0, depth_ratio = 0, "
+                                           "triangles = 2);\n"
+                                           "extruded_set Facade;\n"
+                                           "Lot -> Extrude(60) { Facade, Roof };\n"
+                                           "Facade -> Cond(height > 1) { Peel, Wall };\n"
+                                           "Peel -> Split(y, 1, ~1) { Wall, Facade };\n"
+                                           "Wall -> Shape(wall);\nRoof -> NULL;\n";
+    const std::string scene = R"({"name": "steps", "seed": 3, "cell_size": 120,
+  "grammars": {"deep": {"file": ")" +
+                              (dir / "deep.grammar").string() + R"("}},
+  "buildings": [{"source": "procedural", "count": 2, "block_size": 90, "street_width": 12,
+    "park_share": 0, "districts": [{"grammar": "deep", "share": 1, "floors": [1, 1], "lot": [16, 16]}]}]})";
+    scene::SceneConfig config;
+    std::string error;
+    ASSERT_TRUE(scene::parseSceneConfig(scene, "steps.json", HEXLOD_CONFIGS_DIR, config, error)) << error;
+    scene::BuiltScene built;
+    ASSERT_TRUE(scene::buildScene(config, built, error)) << error;
+    const cells::BatchCatalog catalog(std::move(built));
+    WalkComparison walks;
+    compareWalks(catalog, 0, walks);
+    std::filesystem::remove_all(dir);
+    ASSERT_GT(walks.compared, 200u);
+    EXPECT_GT(walks.outcomes[size_t(Lod1Outcome::Terminal)], 0u);
+    EXPECT_GT(walks.outcomes[size_t(Lod1Outcome::Stopped)], 0u);
+    // Every wall is the same shape, so only a pixel on the limit's line may fall either side.
+    EXPECT_GE(walks.agreed + 2, walks.compared) << walks.agreed << " of " << walks.compared;
 }
 
 } // namespace
