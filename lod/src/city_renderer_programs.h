@@ -1,4 +1,5 @@
-// The frame's shader programs, shared by the files that implement CityRenderer.
+// The frame's shader programs and texture units, shared by the files that implement
+// CityRenderer.
 #pragma once
 
 #include "hexlod/lod/city_renderer.h"
@@ -8,6 +9,10 @@
 #include <map>
 
 namespace hexlod::lod {
+
+// The depth tiles' texture unit in the passes that test against them: past the impostor and
+// tree passes' own textures (units 0 to 3).
+inline constexpr uint32_t kDepthTilesUnit = 7;
 
 struct CityRenderer::Programs {
     render::ShaderProgram lod4, impostor, impostorWall; // impostor: LOD3 ray-cast; impostorWall: LOD2

@@ -1,5 +1,4 @@
 #include "hexlod/lod/prepared_page_bounds.h"
-#include "hexlod/lod/terminal_arena.h"
 
 #include <new>
 
@@ -27,7 +26,7 @@ void PreparedPageBounds::prepare(uint64_t key,
     }
 }
 
-std::vector<PageBounds> PreparedPageBounds::take(uint64_t key, const grammar::TerminalSet& set) {
+std::vector<PageBounds> PreparedPageBounds::take(uint64_t key) {
     std::lock_guard lock(mutex_);
     dropExpired();
     const auto it = entries_.find(key);
@@ -35,10 +34,6 @@ std::vector<PageBounds> PreparedPageBounds::take(uint64_t key, const grammar::Te
     std::vector<PageBounds> bounds = std::move(it->second.bounds);
     bytes_ -= bytesOf(bounds);
     entries_.erase(it);
-    // The key names the set's content, so any set under it has the same bounds; a count that
-    // does not match the set's pages would make the cull read past them.
-    const size_t pages = (set.records.size() + kArenaPageRecords - 1) / kArenaPageRecords;
-    if (bounds.size() != pages) return {};
     return bounds;
 }
 

@@ -21,9 +21,10 @@ public:
     // Computes `set`'s page bounds and keeps them under `key` (the set's cache key digest)
     // for as long as the set lives. Thread-safe; never throws (without memory, nothing is kept).
     void prepare(uint64_t key, const std::shared_ptr<const grammar::TerminalSet>& set) noexcept;
-    // The bounds prepared under `key` for a set of `set`'s size, handed over (and forgotten);
-    // empty when none were, and the caller computes them. Thread-safe.
-    std::vector<PageBounds> take(uint64_t key, const grammar::TerminalSet& set);
+    // The bounds prepared under `key`, handed over (and forgotten); empty when none were, and
+    // the caller computes them (TerminalArena::acquire also does where their count does not fit
+    // the set). Thread-safe.
+    std::vector<PageBounds> take(uint64_t key);
     // Sets whose bounds are held, not uploaded yet, and those bounds' bytes.
     size_t size() const;
     uint64_t byteSize() const;
