@@ -183,7 +183,9 @@ bool CityRenderer::init(std::string& error) {
             spheres.emplace_back(atlas.centre, atlas.radius);
         }
         impostor::ViewLookup lookup(layout);
-        if (!impostorTextures_.upload(layout, atlases, lookup.buildTable(128), error)) return false;
+        if (!impostorTextures_.upload(layout, atlases, lookup.buildTable(impostor::kFacadeTableResolution),
+                                      error))
+            return false;
         impostor::ViewWeights front;
         lookup.nearestViews(glm::vec3(0, 0, 1), front);
         centralView_ = front.views[0];

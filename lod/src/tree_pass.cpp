@@ -122,7 +122,8 @@ bool TreePass::init(const cells::BatchCatalog& catalog, const SceneImpostors* im
     }
     const impostor::ViewLayout& layout = impostors->species.front().layout;
     impostor::ViewLookup lookup(layout);
-    if (!textures_.upload(layout, atlases, lookup.buildTable(64), error)) return false;
+    if (!textures_.upload(layout, atlases, lookup.buildTable(impostor::kSpeciesTableResolution), error))
+        return false;
     upload(spheres_, spheres);
     upload(boxes_, boxes);
     std::vector<glm::vec4> averages;

@@ -1,13 +1,14 @@
 // Writes what the viewer's JavaScript decoders are tested against (ctest web.golden_payloads,
 // then web.decoders): real terminal-set and extruded-set payloads of residential and business
 // batches, encoded by the C++ codecs, each with a JSON file of what the C++ decoder reads from
-// it; and the impostor view layout (directions, view frames, grid positions, tile origins) the
-// viewer's impostor shader code must reproduce.
+// it; and the impostor view layout (directions, view frames, tile origins, the table of views and
+// weights the GPU blends) the viewer's impostor shader code must reproduce.
 //   web_golden_payloads OUTPUT_FOLDER
 #include "hexlod/grammar/batch_expander.h"
 #include "hexlod/grammar/extruded_set_codec.h"
 #include "hexlod/grammar/terminal_set_codec.h"
 #include "hexlod/impostor/view_layout.h"
+#include "hexlod/impostor/view_lookup.h"
 #include "hexlod/scene/demo_footprints.h"
 
 #include <nlohmann/json.hpp>
@@ -149,22 +150,25 @@ Json layoutExpectation(uint32_t grid, impostor::ViewSphere sphere) {
                          {"up", vec(basis.up)},
                          {"tile", Json::array({tile.x, tile.y})}});
     }
-    Json positions = Json::array();
-    const glm::vec3 probes[] = {
-        {0, 0, 1}, {0.3f, 0.2f, 0.9f},  {-0.7f, 0.1f, 0.2f},  {0.1f, -0.9f, 0.05f}, {0.5f, 0.5f, -0.5f},
-        {1, 0, 0}, {-0.2f, 0.6f, 0.7f}, {-0.3f, 0.4f, -0.8f}, {0.2f, -0.1f, -0.9f}};
-    for (const glm::vec3& p : probes) {
-        const glm::vec3 d = glm::normalize(p);
-        positions.push_back(
-            {{"direction", vec(d)},
-             {"grid_position", Json::array({layout.gridPosition(d).x, layout.gridPosition(d).y})}});
+    // The GPU's table of views and weights at the renderer's resolution for the sphere.
+    const uint32_t resolution = sphere == impostor::ViewSphere::Hemisphere
+                                    ? impostor::kFacadeTableResolution
+                                    : impostor::kSpeciesTableResolution;
+    const impostor::DirectionTable table = impostor::ViewLookup(layout).buildTable(resolution);
+    Json tableViews = Json::array(), tableWeights = Json::array();
+    for (const impostor::ViewWeights& texel : table.texels) {
+        for (int k = 0; k < 4; ++k) {
+            tableViews.push_back(texel.views[k]);
+            tableWeights.push_back(texel.weights[k]);
+        }
     }
-    return {{"grid", grid},
-            {"sphere", sphere == impostor::ViewSphere::Hemisphere ? "hemi-octahedral" : "octahedral"},
-            {"view_resolution", layout.viewResolution},
-            {"padding", layout.padding},
-            {"views", views},
-            {"grid_positions", positions}};
+    return {
+        {"grid", grid},
+        {"sphere", sphere == impostor::ViewSphere::Hemisphere ? "hemi-octahedral" : "octahedral"},
+        {"view_resolution", layout.viewResolution},
+        {"padding", layout.padding},
+        {"views", views},
+        {"direction_table", {{"resolution", resolution}, {"views", tableViews}, {"weights", tableWeights}}}};
 }
 
 } // namespace

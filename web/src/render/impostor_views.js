@@ -13,20 +13,6 @@ export function decodeHemiOctahedral(px, py) {
     return normalize([x, y, Math.max(0, 1 - Math.abs(x) - Math.abs(y))]);
 }
 
-export function encodeHemiOctahedral(d) {
-    const l1 = Math.abs(d[0]) + Math.abs(d[1]) + Math.abs(d[2]);
-    const x = d[0] / l1, y = d[1] / l1;
-    return [x + y, x - y];
-}
-
-// The lower half folds over the square's corners.
-export function encodeOctahedral(d) {
-    const l1 = Math.abs(d[0]) + Math.abs(d[1]) + Math.abs(d[2]);
-    const x = d[0] / l1, y = d[1] / l1;
-    if (d[2] >= 0) return [x, y];
-    return [signOf(x) * (1 - Math.abs(y)), signOf(y) * (1 - Math.abs(x))];
-}
-
 export function decodeOctahedral(px, py) {
     const z = 1 - Math.abs(px) - Math.abs(py);
     if (z >= 0) return normalize([px, py, z]);
@@ -40,37 +26,12 @@ export function viewDirection(view, grid, sphere = HEMISPHERE) {
     return decodeHemiOctahedral(c * s - 1, r * s - 1);
 }
 
-// The continuous (column, row) of a direction; on the hemisphere, behind the wall (z < 0) is
-// pulled onto the rim.
-export function gridPosition(direction, grid, sphere = HEMISPHERE) {
-    if (sphere === FULL_SPHERE) {
-        const p = encodeOctahedral(direction);
-        return [(p[0] + 1) * 0.5 * grid - 0.5, (p[1] + 1) * 0.5 * grid - 0.5];
-    }
-    let d = [direction[0], direction[1], Math.max(direction[2], 0)];
-    if (d[0] === 0 && d[1] === 0 && d[2] === 0) d = [0, 0, 1];
-    const p = encodeHemiOctahedral(d);
-    return [(p[0] + 1) * 0.5 * (grid - 1), (p[1] + 1) * 0.5 * (grid - 1)];
-}
-
 export function viewBasis(forward, sphere = HEMISPHERE) {
     const [primary, secondary] = sphere === FULL_SPHERE ? [[0, 0, 1], [0, 1, 0]] : [[0, 1, 0], [0, 0, 1]];
     const along = primary[0] * forward[0] + primary[1] * forward[1] + primary[2] * forward[2];
     const reference = Math.abs(along) > 0.999 ? secondary : primary;
     const right = normalize(cross(reference, forward));
     return { right, up: cross(forward, right), forward };
-}
-
-// The four views around a direction and their bilinear weights on the grid (the LOD3 blend;
-// on the full sphere, a direction beyond the outer views' centres takes the outer views).
-export function blendViews(direction, grid, sphere = HEMISPHERE) {
-    const [gx, gy] = gridPosition(direction, grid, sphere);
-    const c = Math.min(Math.max(Math.floor(gx), 0), grid - 2), r = Math.min(Math.max(Math.floor(gy), 0), grid - 2);
-    const fx = Math.min(Math.max(gx - c, 0), 1), fy = Math.min(Math.max(gy - r, 0), 1);
-    return {
-        views: [r * grid + c, r * grid + c + 1, (r + 1) * grid + c, (r + 1) * grid + c + 1],
-        weights: [(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy],
-    };
 }
 
 // The atlas texel (x, y from the top) that view coordinates uv in [-1, 1]^2 of `view` land on.
@@ -111,11 +72,13 @@ void impostorBasis(vec3 forward, out vec3 right, out vec3 up) {
     right = normalize(cross(reference, forward));
     up = cross(forward, right);
 }
-vec2 impostorGridPosition(vec3 d, float grid) {
+// Where a direction lies in the table's square (view_table.js), in [0, 1]^2; behind the wall
+// is pulled onto the rim.
+vec2 impostorTablePosition(vec3 d) {
     d.z = max(d.z, 0.0);
     if (d.x == 0.0 && d.y == 0.0 && d.z == 0.0) d.z = 1.0;
     vec2 p = d.xy / (abs(d.x) + abs(d.y) + abs(d.z));
-    return (vec2(p.x + p.y, p.x - p.y) + 1.0) * (0.5 * (grid - 1.0));
+    return vec2(p.x + p.y, p.x - p.y) * 0.5 + 0.5;
 }
 `;
 
@@ -140,19 +103,8 @@ void treeBasis(vec3 forward, out vec3 right, out vec3 up) {
     right = normalize(cross(reference, forward));
     up = cross(forward, right);
 }
-vec2 treeGridPosition(vec3 d, float grid) {
-    return (octEncode(d) + 1.0) * (0.5 * grid) - 0.5;
-}
-`;
-
-// The bilinear blend of the four grid views around continuous grid position g (both spheres).
-export const VIEW_BLEND_GLSL = /* glsl */ `
-void gridBlend(vec2 g, float grid, out vec4 views, out vec4 weights) {
-    vec2 base = clamp(floor(g), vec2(0.0), vec2(grid - 2.0));
-    vec2 f = clamp(g - base, 0.0, 1.0);
-    float v = base.y * grid + base.x;
-    views = vec4(v, v + 1.0, v + grid, v + grid + 1.0);
-    weights = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+vec2 treeTablePosition(vec3 d) {
+    return octEncode(d) * 0.5 + 0.5;
 }
 `;
 

@@ -5,15 +5,16 @@
 // merged mesh of quads per shape and LOD, impostor_quads.js). LOD2 is the central view on the
 // rectangle of the mesh's bounds on the wall plane (z = 0), as the native renderer draws it: the
 // sphere's square would shade twice the fragments, and a software rasteriser pays for every
-// one of them. LOD3 faces the camera and blends the four
-// grid views around the camera's direction in shape space by their bilinear weights, each
-// sampled where the quad's point lies in that view's frame (the reconstruction of
+// one of them. LOD3 faces the camera and blends up to four views around the camera's direction
+// in shape space with the native renderer's weights (view_table.js), each sampled where the
+// quad's point lies in that view's frame (the reconstruction of
 // impostor_views.glsl without its depth iterations). Coverage under one half is discarded
 // (alpha test, no sorting); normals light it as the meshes are lit (lights.js).
 import * as THREE from 'three';
 
 import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
-import { IMPOSTOR_ATLAS_GLSL, IMPOSTOR_VIEWS_GLSL, VIEW_BLEND_GLSL } from './impostor_views.js';
+import { IMPOSTOR_ATLAS_GLSL, IMPOSTOR_VIEWS_GLSL } from './impostor_views.js';
+import { buildViewTable, FACADE_TABLE_RESOLUTION, VIEW_TABLE_GLSL, viewTableUniforms } from './view_table.js';
 import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
 const VERTEX = /* glsl */ `
@@ -30,7 +31,7 @@ out vec3 vSun;             // the sun in shape space
 out vec3 vUp;              // world up in shape space
 ${QUAD_MATRIX_GLSL}
 ${IMPOSTOR_VIEWS_GLSL}
-${VIEW_BLEND_GLSL}
+${VIEW_TABLE_GLSL}
 vec2 viewUv(float view, vec3 q) {
     vec3 right, up;
     impostorBasis(impostorViewDirection(view, atlasLayout.x), right, up);
@@ -53,7 +54,6 @@ void main() {
     mat3 worldToShape = inverse(linear);
     vec3 centre = (shapeToWorld * vec4(sphere.xyz, 1.0)).xyz;
     vec3 toCamera = normalize(worldToShape * (cameraPosition - centre));
-    float grid = atlasLayout.x;
     vec3 q; // the quad's point in radii, relative to the centre
     if (lod < 2.5) {
         vViews = vec4(atlasLayout.w, atlasLayout.w, atlasLayout.w, atlasLayout.w);
@@ -62,7 +62,7 @@ void main() {
         // the view shows there.
         q = (vec3(mix(wallMin, wallMax, 0.5 * position.xy + 0.5), 0.0) - sphere.xyz) / sphere.w;
     } else {
-        gridBlend(impostorGridPosition(toCamera, grid), grid, vViews, vWeights);
+        tableBlend(impostorTablePosition(toCamera), vViews, vWeights);
         vec3 forward = toCamera;
         forward.z = max(forward.z, 0.0);
         forward = normalize(forward + vec3(0.0, 0.0, 1e-6));
@@ -133,6 +133,8 @@ export class ImpostorSet {
         this.atlases = new Map(); // "grammar/shape" -> atlas
         this.failed = [];
         this.enabled = !!scene.capabilities?.impostors && this.layout?.sphere === 'hemi-octahedral';
+        // One table for every facade: they share the layout.
+        this.table = this.enabled ? viewTableUniforms(buildViewTable(this.layout, FACADE_TABLE_RESOLUTION)) : null;
         this.isReady = false;
         this.ready = (this.enabled ? this.load(scene) : Promise.resolve()).then(() => (this.isReady = true));
     }
@@ -175,6 +177,7 @@ export class ImpostorSet {
                 ...wallRectangle(imp),
                 atlasLayout: { value: new THREE.Vector4(grid, view_resolution, padding, central_view) },
                 lod: { value: lod },
+                ...this.table,
                 albedoAtlas: { value: atlas.albedo },
                 normalAtlas: { value: atlas.normal },
                 sunDirection: { value: this.lighting.sunDirection },

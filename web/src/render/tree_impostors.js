@@ -4,17 +4,18 @@
 // through the centre of the species' bounding sphere (centre, radius: tree space, x east, y
 // north, z up, the trunk base at the origin), over what the camera sees of the species' box
 // within the sphere's square, as lod/shaders/tree_billboard.vert places it: the square's other
-// pixels show nothing. It blends the four grid views around the direction to the camera by
-// their bilinear weights, each sampled where the quad's point lies in that view's frame. It
-// writes the depth the views store, so a billboard sinks into the ground and behind buildings
-// where the tree does, not where its flat quad would. As in the native renderer, coverage
-// becomes the sample mask on a multisampled canvas (alpha to coverage) and is a cutout at one
-// half otherwise; the stored normals light it as the meshes are lit (lights.js).
+// pixels show nothing. It blends up to four views around the direction to the camera with the
+// native renderer's weights (view_table.js), each sampled where the quad's point lies in that
+// view's frame. It writes the depth the views store, so a billboard sinks into the ground and
+// behind buildings where the tree does, not where its flat quad would. As in the native
+// renderer, coverage becomes the sample mask on a multisampled canvas (alpha to coverage) and is
+// a cutout at one half otherwise; the stored normals light it as the meshes are lit (lights.js).
 import * as THREE from 'three';
 
 import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
 import { loadTexture } from './impostors.js';
-import { FULL_SPHERE, IMPOSTOR_ATLAS_GLSL, TREE_VIEWS_GLSL, VIEW_BLEND_GLSL } from './impostor_views.js';
+import { FULL_SPHERE, IMPOSTOR_ATLAS_GLSL, TREE_VIEWS_GLSL } from './impostor_views.js';
+import { buildViewTable, SPECIES_TABLE_RESOLUTION, VIEW_TABLE_GLSL, viewTableUniforms } from './view_table.js';
 import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
 const VERTEX = /* glsl */ `
@@ -29,7 +30,7 @@ out vec2 vUv0, vUv1, vUv2, vUv3;
 out vec4 vClip, vClipForward;
 ${QUAD_MATRIX_GLSL}
 ${TREE_VIEWS_GLSL}
-${VIEW_BLEND_GLSL}
+${VIEW_TABLE_GLSL}
 vec2 viewUv(float view, vec3 q) {
     vec3 right, up;
     treeBasis(treeViewDirection(view, atlasLayout.x), right, up);
@@ -62,8 +63,7 @@ void main() {
     vec3 centre = base + sphere.xyz;
     vec3 forward = cameraPosition - centre;
     forward = dot(forward, forward) > 1e-12 ? normalize(forward) : vec3(0.0, 0.0, 1.0);
-    float grid = atlasLayout.x;
-    gridBlend(treeGridPosition(forward, grid), grid, vViews, vWeights);
+    tableBlend(treeTablePosition(forward), vViews, vWeights);
     vec3 right, up;
     treeBasis(forward, right, up);
     vec2 lo, hi;
@@ -125,6 +125,7 @@ export class TreeImpostors {
         this.byKey = new Map();
         this.failed = [];
         this.enabled = !!scene.capabilities?.tree_billboards && this.layout?.sphere === FULL_SPHERE;
+        this.table = this.enabled ? viewTableUniforms(buildViewTable(this.layout, SPECIES_TABLE_RESOLUTION)) : null;
         this.generation = 0; // grows with every species added after the start
         this.adding = new Set(); // species indices being loaded by add()
         this.isReady = false;
@@ -193,6 +194,7 @@ export class TreeImpostors {
                 boxLo: { value: new THREE.Vector3(...box[0]) },
                 boxHi: { value: new THREE.Vector3(...box[1]) },
                 atlasLayout: { value: new THREE.Vector3(grid, view_resolution, padding) },
+                ...this.table,
                 albedoAtlas: { value: species.albedo },
                 normalAtlas: { value: species.normal },
                 sunDirection: { value: this.lighting.sunDirection },

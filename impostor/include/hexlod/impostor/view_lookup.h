@@ -27,6 +27,11 @@ namespace hexlod::impostor {
 inline constexpr float kMinViewShare = 0.2f;
 static_assert(kMinViewShare < 0.25f, "the nearest of four views has a share of at least a quarter");
 
+// Texels per side of the GPU's tables: LOD3's facade impostors, the tree species' billboards.
+// The web viewer builds its tables at the same sizes (web/src/render/view_table.js).
+inline constexpr uint32_t kFacadeTableResolution = 128;
+inline constexpr uint32_t kSpeciesTableResolution = 64;
+
 struct ViewWeights {
     std::array<uint32_t, 4> views{}; // view indices, nearest first
     std::array<float, 4> weights{};  // sum to 1, largest first; 0 past `count`
