@@ -155,7 +155,7 @@ void TerminalSetCache::insertLocked(const BatchKey& key, const SetPtr& set,
         stats_.memoryBytes -= entry.bytes;
         lru_.erase(entry.lru);
     }
-    entry = {set, set->byteSize(), lru_.pushFront(key)};
+    entry = {set, set->heldBytes(), lru_.pushFront(key)};
     stats_.memoryBytes += entry.bytes;
     ++stats_.insertions;
     trimLocked(ours);

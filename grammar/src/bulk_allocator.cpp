@@ -69,6 +69,12 @@ public:
         std::lock_guard lock(mutex_);
         return retained_;
     }
+    // The size of a block handed out, or 0 for one that is not.
+    size_t sizeOf(const void* pointer) {
+        std::lock_guard lock(mutex_);
+        const auto it = inUse_.find(const_cast<void*>(pointer));
+        return it == inUse_.end() ? 0 : it->second;
+    }
     ~BlockPool() {
         for (const auto& [bytes, pointer] : free_) std::free(pointer);
     }
@@ -124,6 +130,12 @@ void setBulkPoolLimit(size_t bytes) {
 
 size_t bulkPoolBytes() {
     return detail::pool().retained();
+}
+
+size_t bulkBlockBytes(const void* pointer, size_t requested) {
+    if (requested < detail::kHugeThreshold) return requested;
+    const size_t block = detail::pool().sizeOf(pointer);
+    return block ? block : requested;
 }
 
 } // namespace hexlod::grammar

@@ -116,6 +116,37 @@ uint32_t tagOf(const TerminalSet& set) {
     return set.records.empty() ? uint32_t(set.header.cell.q) : set.records[0].building;
 }
 
+// A set decoded into a released block up to a quarter larger than its records holds that whole
+// block (bulk_allocator.h): the budget counts it, not the records alone.
+TEST(TerminalSetCache, CountsTheWholeBlockASetsRecordsHold) {
+    grammar::setBulkPoolLimit(0); // from an empty pool: other tests may have left blocks
+    grammar::setBulkPoolLimit(size_t(256) << 20);
+    constexpr size_t kBlock = size_t(32) << 20;
+    using Records = std::vector<grammar::TerminalRecord, grammar::BulkAllocator<grammar::TerminalRecord>>;
+    // 26 MiB of records in a released 32 MiB block.
+    const auto setInABlock = [&] {
+        { const Records released(kBlock / sizeof(grammar::TerminalRecord)); }
+        return makeSet((size_t(26) << 20) / sizeof(grammar::TerminalRecord), 7);
+    };
+    TerminalSet set = setInABlock();
+    const uint64_t held = set.heldBytes();
+    EXPECT_EQ(held, set.byteSize() + kBlock - set.records.size() * sizeof(grammar::TerminalRecord));
+    {
+        TerminalSetCache cache(
+            {.memoryBudgetBytes = uint64_t(1) << 30, .diskBudgetBytes = 0, .diskPath = {}});
+        cache.insert(keyOf(1), std::move(set));
+        EXPECT_EQ(cache.stats().memoryBytes, held);
+    }
+    // A budget its records fit in but its block does not keeps nothing.
+    set = setInABlock();
+    ASSERT_EQ(set.heldBytes(), held);
+    TerminalSetCache tight({.memoryBudgetBytes = held - 1, .diskBudgetBytes = 0, .diskPath = {}});
+    ASSERT_LT(set.byteSize(), held - 1);
+    tight.insert(keyOf(1), std::move(set));
+    EXPECT_EQ(tight.stats().memoryEntries, 0u);
+    grammar::setBulkPoolLimit(size_t(2) << 30);
+}
+
 TEST(TerminalSetCache, EvictsTheLeastRecentlyUsedFirst) {
     TerminalSetCache cache({.memoryBudgetBytes = 3 * bytesOf(100), .diskBudgetBytes = 0, .diskPath = {}});
     for (int i = 0; i < 3; ++i) cache.insert(keyOf(i), makeSet(100, i));

@@ -1,7 +1,7 @@
 // The bulk allocator's pool of released blocks: kept for reuse up to its limit, and a lowered
 // limit frees what lies beyond it at once (a long-running service bounds its memory so); a
 // request takes the smallest pooled block that holds it, unless that one is over a quarter
-// larger.
+// larger; a block tells the bytes it holds, which memory budgets count.
 #include "hexlod/grammar/bulk_allocator.h"
 
 #include <gtest/gtest.h>
@@ -77,6 +77,19 @@ TEST_F(BulkAllocatorTest, ABlockOverAQuarterLargerIsNotTaken) {
         const BulkWords exact = wordsOfMiB(26); // 32 is under 26 and a quarter (32.5)
         EXPECT_EQ(bulkPoolBytes(), 24 * kMiB);
     }
+}
+
+TEST_F(BulkAllocatorTest, ABlockReportsTheBytesItHolds) {
+    { const BulkWords big = wordsOfMiB(32); }
+    {
+        const BulkWords reused = wordsOfMiB(26); // takes the 32 MiB block
+        EXPECT_EQ(bulkBlockBytes(reused.data(), 26 * kMiB), 32 * kMiB);
+        const BulkWords fresh(17 * kMiB / sizeof(uint32_t) + 1); // whole huge pages: 18 MiB
+        EXPECT_EQ(bulkBlockBytes(fresh.data(), fresh.capacity() * sizeof(uint32_t)), 18 * kMiB);
+        const BulkWords small = wordsOfMiB(1); // the heap's, below the bulk threshold
+        EXPECT_EQ(bulkBlockBytes(small.data(), kMiB), kMiB);
+    }
+    EXPECT_EQ(bulkBlockBytes(nullptr, 0), 0u);
 }
 
 } // namespace

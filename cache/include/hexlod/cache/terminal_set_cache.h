@@ -54,7 +54,7 @@ struct CacheStats {
     double diskStoreSecondsTotal = 0.0; // disk tier: encoding and writing
 };
 
-// Thread-safe. Sizes are TerminalSet::byteSize().
+// Thread-safe. Sizes are TerminalSet::heldBytes(): the records and the rest of their block.
 //
 // Pinning: a set whose shared_ptr is held outside the cache is pinned and never evicted.
 // Every call trims the memory tier back to its budget, oldest unpinned entries first, so

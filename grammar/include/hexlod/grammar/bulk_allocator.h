@@ -24,6 +24,11 @@ namespace hexlod::grammar {
 void setBulkPoolLimit(size_t bytes);
 size_t bulkPoolBytes(); // retained now
 
+// The bytes the block behind `pointer`, allocated for `requested` bytes, holds: a bulk block's
+// whole size (whole huge pages, and up to a quarter more when it reused a released block);
+// `requested` for an allocation below the bulk threshold, the heap's.
+size_t bulkBlockBytes(const void* pointer, size_t requested);
+
 namespace detail {
 constexpr size_t kHugePage = size_t(2) << 20;
 constexpr size_t kHugeThreshold = size_t(4) << 20;

@@ -71,6 +71,12 @@ struct TerminalSet {
         return sizeof(TerminalSetHeader) + countPerShape.size() * sizeof(uint32_t) +
                records.size() * sizeof(TerminalRecord);
     }
+    // The memory it holds: byteSize() and the rest of its records' block (bulk_allocator.h),
+    // what a memory budget must count.
+    size_t heldBytes() const {
+        return byteSize() + bulkBlockBytes(records.data(), records.capacity() * sizeof(TerminalRecord)) -
+               records.size() * sizeof(TerminalRecord);
+    }
     // First record of `shape`, for drawing one shape's instances.
     size_t firstOfShape(uint16_t shape) const;
 };
