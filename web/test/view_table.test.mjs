@@ -5,7 +5,13 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 
 import { FULL_SPHERE, HEMISPHERE, viewDirection } from '../src/render/impostor_views.js';
-import { buildViewTable, FACADE_TABLE_RESOLUTION, nearestViews, SPECIES_TABLE_RESOLUTION } from '../src/render/view_table.js';
+import {
+    buildViewTable,
+    FACADE_TABLE_RESOLUTION,
+    layoutTableUniforms,
+    nearestViews,
+    SPECIES_TABLE_RESOLUTION,
+} from '../src/render/view_table.js';
 import { goldenJson } from './golden.js';
 
 // A texel's blend as view -> weight over the views that take part: views tied in distance may
@@ -67,4 +73,13 @@ test('behind the wall, the hemisphere blends the rim; fewer than five views blen
     const { weights, count } = nearestViews([0, 0, 1], four, FULL_SPHERE);
     assert.equal(count, 4);
     weights.forEach((w) => assert.ok(Math.abs(w - 0.25) < 1e-12, `${weights}`));
+});
+
+test('a layout grid outside [2, 32] is refused with a reason, not built', () => {
+    for (const grid of [0, 1, 33, 1e6, 2.5, NaN, undefined, '8']) {
+        assert.throws(() => buildViewTable({ grid, sphere: HEMISPHERE }, 16), RangeError, `grid ${grid}`);
+        const failed = [];
+        assert.equal(layoutTableUniforms({ grid, sphere: FULL_SPHERE }, 16, failed), null);
+        assert.match(failed[0], /outside \[2, 32\]/);
+    }
 });

@@ -14,7 +14,7 @@ import * as THREE from 'three';
 
 import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
 import { IMPOSTOR_ATLAS_GLSL, IMPOSTOR_VIEWS_GLSL } from './impostor_views.js';
-import { buildViewTable, FACADE_TABLE_RESOLUTION, VIEW_TABLE_GLSL, viewTableUniforms } from './view_table.js';
+import { FACADE_TABLE_RESOLUTION, layoutTableUniforms, VIEW_TABLE_GLSL } from './view_table.js';
 import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
 const VERTEX = /* glsl */ `
@@ -134,7 +134,8 @@ export class ImpostorSet {
         this.failed = [];
         this.enabled = !!scene.capabilities?.impostors && this.layout?.sphere === 'hemi-octahedral';
         // One table for every facade: they share the layout.
-        this.table = this.enabled ? viewTableUniforms(buildViewTable(this.layout, FACADE_TABLE_RESOLUTION)) : null;
+        this.table = this.enabled ? layoutTableUniforms(this.layout, FACADE_TABLE_RESOLUTION, this.failed) : null;
+        this.enabled &&= !!this.table;
         this.isReady = false;
         this.ready = (this.enabled ? this.load(scene) : Promise.resolve()).then(() => (this.isReady = true));
     }
@@ -196,7 +197,7 @@ export class ImpostorSet {
     }
 
     get status() {
-        if (!this.enabled) return 'off';
+        if (!this.enabled) return this.failed.length ? `off: ${this.failed[0]}` : 'off';
         const failed = this.failed.length ? `, ${this.failed.length} failed` : '';
         return `${this.atlases.size} atlases${failed}`;
     }

@@ -15,7 +15,7 @@ import * as THREE from 'three';
 import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
 import { loadTexture } from './impostors.js';
 import { FULL_SPHERE, IMPOSTOR_ATLAS_GLSL, TREE_VIEWS_GLSL } from './impostor_views.js';
-import { buildViewTable, SPECIES_TABLE_RESOLUTION, VIEW_TABLE_GLSL, viewTableUniforms } from './view_table.js';
+import { layoutTableUniforms, SPECIES_TABLE_RESOLUTION, VIEW_TABLE_GLSL } from './view_table.js';
 import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
 const VERTEX = /* glsl */ `
@@ -125,7 +125,8 @@ export class TreeImpostors {
         this.byKey = new Map();
         this.failed = [];
         this.enabled = !!scene.capabilities?.tree_billboards && this.layout?.sphere === FULL_SPHERE;
-        this.table = this.enabled ? viewTableUniforms(buildViewTable(this.layout, SPECIES_TABLE_RESOLUTION)) : null;
+        this.table = this.enabled ? layoutTableUniforms(this.layout, SPECIES_TABLE_RESOLUTION, this.failed) : null;
+        this.enabled &&= !!this.table;
         this.generation = 0; // grows with every species added after the start
         this.adding = new Set(); // species indices being loaded by add()
         this.isReady = false;
@@ -217,7 +218,7 @@ export class TreeImpostors {
     }
 
     get status() {
-        if (!this.enabled) return 'off';
+        if (!this.enabled) return this.failed.length ? `off: ${this.failed[0]}` : 'off';
         const failed = this.failed.length ? `, ${this.failed.length} failed` : '';
         return `${this.byKey.size} species${failed}`;
     }

@@ -59,9 +59,11 @@ export function nearestViews(direction, directions, sphere) {
 }
 
 // The table over the square: texel (x, y) holds the blend for the direction at its centre, as
-// ViewLookup::buildTable. `layout` is a scene's impostor layout (grid, sphere).
+// ViewLookup::buildTable. `layout` is a scene's impostor layout (grid, sphere). A RangeError
+// for a grid outside the layouts' [2, 32] (view_layout.h), which a service never sends.
 export function buildViewTable(layout, resolution) {
     const { grid, sphere } = layout;
+    if (!Number.isInteger(grid) || grid < 2 || grid > 32) throw new RangeError(`impostor layout grid ${grid} is outside [2, 32]`);
     const directions = [];
     for (let v = 0; v < grid * grid; ++v) directions.push(...viewDirection(v, grid, sphere));
     const views = new Float32Array(resolution * resolution * 4);
@@ -87,6 +89,17 @@ export function viewTableUniforms(table) {
         return t;
     };
     return { viewTableViews: { value: texture(table.views) }, viewTableWeights: { value: texture(table.weights) } };
+}
+
+// The table's uniforms for a scene's layout, or null with the reason pushed onto `failed` (the
+// caller then draws no impostors of that layout, and its status says why).
+export function layoutTableUniforms(layout, resolution, failed) {
+    try {
+        return viewTableUniforms(buildViewTable(layout, resolution));
+    } catch (e) {
+        failed.push(e.message);
+        return null;
+    }
 }
 
 // tableBlend(position): the views and weights at a position in [0, 1]^2 of the table's square
