@@ -78,7 +78,10 @@ struct SchedulerOptions {
     uint32_t maxBatchesPerFrame = 8; // 0: no cap
     double maxMillisecondsPerFrame = 0.0;
     uint32_t workers = 0;
-    double prefetchSeconds = 1.0;
+    // How far ahead the prefetch looks. At 1 s the walks' frames still waited for sets the
+    // prefetch had not read yet (docs/BENCHMARKS.md, "The prefetch looks three seconds ahead");
+    // at 5 s the rooftop flight read sets it never drew.
+    double prefetchSeconds = 3.0;
     // workers == 0 only: prefetch on a background thread (see above); ignored with workers.
     bool prefetchInBackground = false;
     // Every cell takes this LOD whatever its error: the all-LOD4 reference and the forced-LOD
