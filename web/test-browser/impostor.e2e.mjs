@@ -2,8 +2,9 @@
 // esbuild and loaded into a page. LOD2 must show exactly the central view (5: red 80, green 175
 // in sRGB) on the rectangle of the mesh's bounds on the wall plane, and nothing beyond it; LOD3
 // from straight in front must blend the four views around the front direction (5, 6, 9, 10,
-// equal weights: red near their mean, 120); both must cover the quad's middle. Lit by the
-// viewer's lights, LOD2 must shade as a Lambert mesh of its albedo facing the same way.
+// weights 0.22 to 0.28 from the table's texel beside the centre: red near their mean, 120);
+// both must cover the quad's middle. Lit by the viewer's lights, LOD2 must shade as a Lambert
+// mesh of its albedo facing the same way.
 import assert from 'node:assert/strict';
 import path from 'node:path';
 import test from 'node:test';
