@@ -54,18 +54,6 @@ glm::vec3 ViewLayout::direction(uint32_t index) const {
     return decodeOctahedral(glm::vec2((column + 0.5f) * scale - 1.0f, (row + 0.5f) * scale - 1.0f));
 }
 
-glm::vec2 ViewLayout::gridPosition(const glm::vec3& dir) const {
-    if (sphere == ViewSphere::Hemisphere) {
-        glm::vec3 d = dir;
-        if (d.z < 0.0f) d.z = 0.0f;
-        if (d.x == 0.0f && d.y == 0.0f && d.z == 0.0f) d.z = 1.0f;
-        glm::vec2 p = encodeHemiOctahedral(d);
-        return (p + 1.0f) * (0.5f * float(grid - 1));
-    }
-    glm::vec2 p = encodeOctahedral(dir);
-    return (p + 1.0f) * (0.5f * float(grid)) - 0.5f;
-}
-
 glm::uvec2 ViewLayout::tileOrigin(uint32_t index) const {
     return glm::uvec2((index % grid) * viewResolution, (index / grid) * viewResolution);
 }

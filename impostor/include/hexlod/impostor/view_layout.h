@@ -41,9 +41,6 @@ struct ViewLayout {
     // Direction from the shape's centre toward the viewer of view `index` (row-major, index =
     // row * grid + column), unit length, in shape space (+z out of the wall).
     glm::vec3 direction(uint32_t index) const;
-    // The grid position (column, row) of a direction, continuous: integers are views. For the
-    // hemisphere a direction behind the wall (z < 0) is first pulled onto the rim.
-    glm::vec2 gridPosition(const glm::vec3& direction) const;
     // Texel origin (column, row) of a view's tile in the atlas, rows from the top.
     glm::uvec2 tileOrigin(uint32_t index) const;
 
