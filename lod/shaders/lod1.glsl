@@ -184,8 +184,8 @@ Lod1Hit lod1Walk(uint rule, Lod1Scope s, Lod1Context c, vec2 point) {
         // runs the whole body for a pixel until every pixel of its group has left the loop.
         // Within the step limit only, where lod1Query's walk would reach it.
         uint next = step + 1 < LOD1_MAX_STEPS ? lod1RuleOp[rule] & 0xffu : 0u;
-        if (next == 7u) return Lod1Hit(LOD1_TERMINAL, lod1RuleShape[rule], s.origin, s.size);
-        if (next == 11u) return hit;
+        if (next == 7u) return Lod1Hit(LOD1_TERMINAL, lod1RuleShape[rule], s.origin, s.size); // Shape
+        if (next == 11u) return hit;                                                         // NULL
     }
     hit.outcome = LOD1_STOPPED;
     return hit;

@@ -308,14 +308,15 @@ TEST_F(Lod1GpuTest, BothWalksStopAtTheSameStepLimit) {
   "buildings": [{"source": "procedural", "count": 2, "block_size": 90, "street_width": 12,
     "park_share": 0, "districts": [{"grammar": "deep", "share": 1, "floors": [1, 1], "lot": [16, 16]}]}]})";
     scene::SceneConfig config;
-    std::string error;
-    ASSERT_TRUE(scene::parseSceneConfig(scene, "steps.json", HEXLOD_CONFIGS_DIR, config, error)) << error;
     scene::BuiltScene built;
-    ASSERT_TRUE(scene::buildScene(config, built, error)) << error;
+    std::string error;
+    const bool builtScene = scene::parseSceneConfig(scene, "steps.json", HEXLOD_CONFIGS_DIR, config, error) &&
+                            scene::buildScene(config, built, error);
+    std::filesystem::remove_all(dir); // the built scene holds the compiled grammar
+    ASSERT_TRUE(builtScene) << error;
     const cells::BatchCatalog catalog(std::move(built));
     WalkComparison walks;
     compareWalks(catalog, 0, walks);
-    std::filesystem::remove_all(dir);
     ASSERT_GT(walks.compared, 200u);
     EXPECT_GT(walks.outcomes[size_t(Lod1Outcome::Terminal)], 0u);
     EXPECT_GT(walks.outcomes[size_t(Lod1Outcome::Stopped)], 0u);
