@@ -53,6 +53,22 @@ try {
         out.triangles = world.renderer.info.render.triangles;
         out.terminals = window.hexlod.state().streamer.terminals; // per LOD, and LOD4 drawn with coarse meshes
         out.cache = window.hexlod.state().cache; // payloads and what they hold for the GPU, in bytes
+        out.cells = window.hexlod.state().streamer.cells; // in view, per LOD, and those the budget held at LOD0
+        out.terminal_budget = window.hexlod.state().terminalBudget;
+        // The cache's bytes by payload kind and grammar kind ("terminal building", "extruded tree", ...).
+        // And per building grammar, the bytes its terminal sets take per building.
+        out.cache_by_kind = {};
+        const perGrammar = {};
+        for (const { value, bytes } of window.hexlod.streamer.cache.list()) {
+            const grammar = window.hexlod.streamer.grammar(value.grammar);
+            const kind = `${value.kind} ${grammar?.kind}`;
+            out.cache_by_kind[kind] = (out.cache_by_kind[kind] ?? 0) + bytes;
+            if (kind !== 'terminal building') continue;
+            const sum = (perGrammar[grammar.label] ??= { bytes: 0, members: 0 });
+            sum.bytes += bytes;
+            sum.members += value.members;
+        }
+        out.terminal_bytes_per_building = Object.fromEntries(Object.entries(perGrammar).map(([k, v]) => [k, Math.round(v.bytes / v.members)]));
         impostors.forEach((o) => (o.visible = false));
         out.without_impostors_ms = median();
         impostors.forEach((o) => (o.visible = true));

@@ -15,6 +15,7 @@ import { Streamer } from './stream/streamer.js';
 import { showAttribution } from './ui/attribution.js';
 import { Messages } from './ui/messages.js';
 import { Picker } from './ui/picker.js';
+import { queryNumber } from './ui/query_numbers.js';
 import { StatsPanel } from './ui/stats_panel.js';
 import { TuningPanel } from './ui/tuning_panel.js';
 import * as THREE from 'three';
@@ -63,7 +64,12 @@ async function start() {
         messages.add('tree impostors are not served by this service: trees beyond the terminal distance are not drawn', 'notice');
     const terminal = new THREE.MeshLambertMaterial({ vertexColors: true });
     const materials = { extruded: makeExtrudedMaterial(), backing: new THREE.MeshLambertMaterial({ vertexColors: true }), terminal };
-    const budgetMiB = Number(params.get('budget') ?? 384);
+    // ?budget=MiB bounds the content cache, and with it the terminal sets a view may hold. The
+    // default holds the thesis city's street view whole (0.93 GB: docs/BENCHMARKS.md, "The
+    // viewer's memory within its budget").
+    const budget = queryNumber(params, 'budget', { fallback: 1024, min: 0, max: 65536 });
+    const concurrency = queryNumber(params, 'concurrency', { fallback: 6, min: 1, max: 64, integer: true });
+    for (const { problem } of [budget, concurrency]) if (problem) messages.add(problem);
     // ?occlusion=1 or 0 turns occlusion culling on or off; by default it is on where the GL
     // renders on the CPU.
     const occlusionParam = params.get('occlusion');
@@ -77,8 +83,8 @@ async function start() {
         trees,
         treeForm: params.get('trees') ?? 'auto',
         materials,
-        budgetBytes: budgetMiB * 1024 * 1024,
-        concurrency: Number(params.get('concurrency') ?? 6),
+        budgetBytes: budget.value * 1024 * 1024,
+        concurrency: concurrency.value,
         onError: (text) => messages.add(text),
         onStale: () => reloadIndex(),
         occluders: occlusion ? new OccluderDepth(world) : null,
@@ -204,6 +210,7 @@ async function start() {
             streamer: streamer.stats,
             traffic: { ...traffic },
             cache: { entries: streamer.cache.size, bytes: streamer.cache.bytes, budget: streamer.cache.budget, evictions: streamer.cache.evictions },
+            terminalBudget: { ...streamer.budget }, // what the latest update's admission had and took
             pending: streamer.queue.pending,
             inFlight: streamer.queue.inFlight,
             aborted: streamer.queue.aborted,

@@ -86,9 +86,9 @@ export class TerminalBatch {
         this.sorted = treeCut || this.runs.some((r) => r.lod3 || r.coarse);
         this.onWall = !freeStanding;
         this.lastCut = -1;
-        // The CPU's matrices, kept to sort from, and the lists' records; the instance buffers
-        // are counted as they grow (gpuBytes).
-        this.baseBytes = this.sorted ? this.matrices.byteLength : 0;
+        // The CPU's matrices, frames and sizes, kept to sort from, and the lists' records; the
+        // instance buffers are counted as they grow (gpuBytes).
+        this.baseBytes = this.sorted ? this.matrices.byteLength + this.frames.byteLength + this.sizes.byteLength : 0;
         for (const run of this.runs) {
             if (this.sorted) run.records ??= unwrittenList(run.count);
             else fill(run.lod4, this.matrices.subarray(16 * run.first, 16 * (run.first + run.count)));

@@ -23,6 +23,16 @@ export class ContentCache {
         return this.entries.has(url);
     }
 
+    // The bytes an entry counts now, 0 for none (url null or not cached); it is not touched.
+    bytesOf(url) {
+        return this.entries.get(url)?.bytes ?? 0;
+    }
+
+    // Every entry, {url, value, bytes}, least recently used first; none is touched.
+    list() {
+        return this.entries.values();
+    }
+
     put(url, value, bytes) {
         this.remove(url);
         this.entries.set(url, { url, value, bytes });

@@ -5,7 +5,9 @@
 // of cells in view, then terminal sets by screen-space error) and drops what is no longer
 // wanted. Until a wanted payload arrives a batch keeps drawing what it drew before (the old
 // version after an edit, the extruded set before its terminals), so nothing leaves a hole.
-// Decoded payloads and their GPU objects live in a byte-budgeted LRU.
+// Decoded payloads and their GPU objects live in a byte-budgeted LRU, and a view that wants more
+// terminal sets than the budget holds draws the lowest-priority ones' batches at LOD0
+// (terminal_budget.js).
 import * as THREE from 'three';
 
 import { getBinary } from '../api.js';
@@ -18,8 +20,14 @@ import { TreeBillboards } from '../render/tree_billboards.js';
 import { ContentCache } from './content_cache.js';
 import { FetchQueue } from './fetch_queue.js';
 import { decideCell, EXTRUDED, lodDistance, TERMINALS, terminalLodDistances } from './lod_policy.js';
+import { admitTerminalSets, bytesPerMember } from './terminal_budget.js';
 
 const BACKING_INSET = 0.5; // metres: base volumes behind terminal facades, as the native renderer
+
+// A terminal set's fetch priority, which is also its rank for the budget: in view first, then
+// by its cell's screen-space error (capped at 1e6); extruded sets go before either.
+const terminalPriority = (visible, sse) => (visible ? 2e6 : 0) + sse;
+const extrudedPriority = (visible, sse) => (visible ? 3e6 : 1e6) + sse;
 
 // Whether a cell group's object is a base volume, which the occlusion image draws.
 const isOccluder = (object) => object.layers.isEnabled(OCCLUDER_LAYER);
@@ -49,7 +57,11 @@ export class Streamer {
             onFailed: (request, error) => onError(`${request.url}: ${error.message ?? error}`),
             onStale: () => onStale(),
         });
-        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
+        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
+        this.budget = { room: 0, wanted: 0, admitted: 0 }; // the latest admitTerminals
+        // Building terminal sets' bytes as last cached with their GPU objects, kept after they
+        // are evicted, so that a set that did not fit is not fetched again to learn it again.
+        this.measured = new Map(); // url -> {grammar, members, bytes}
         this.frustum = new THREE.Frustum();
         this.box = new THREE.Box3();
     }
@@ -102,7 +114,7 @@ export class Streamer {
         const start = performance.now();
         const set = request.kind === 'terminal' ? decodeTerminalSet(bytes) : decodeExtrudedSet(bytes);
         this.stats.decodeMs += performance.now() - start;
-        return { kind: request.kind, set, version, grammar: request.grammar, wire: bytes.byteLength };
+        return { kind: request.kind, set, version, grammar: request.grammar, members: request.members, wire: bytes.byteLength };
     }
 
     dispose(value) {
@@ -172,10 +184,11 @@ export class Streamer {
         const treeDistance = treeError > 0 ? lodDistance(treeError, this.profile, view.fovY, view.viewportHeight) : Infinity;
         const requests = [];
         const pinned = new Set();
-        const stats = { visible: 0, cells: { extruded: 0, terminals: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 } };
+        const stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 } };
         // The base volumes the last update left in the cell groups, seen from this view.
         const occlusion = this.occluders ? this.occluders.update(view, this.occluderVersion) : null;
         const p = view.position;
+        const wanted = []; // the cells this update draws or fetches for: {cell, decision, visible}
         for (const cell of this.cells) {
             const decision = decideCell(this.lodOf.get(cell.id), cell.bounds, view, this.profile);
             this.lodOf.set(cell.id, decision.lod);
@@ -188,10 +201,16 @@ export class Streamer {
             const group = this.world.cellGroup(cell);
             if (group.visible !== visible && group.children.some(isOccluder)) ++this.occluderVersion;
             group.visible = visible;
-            if (!visible && !near) continue;
+            if (visible || near) wanted.push({ cell, decision, visible });
+        }
+        const admitted = this.admitTerminals(wanted);
+        for (const { cell, decision, visible } of wanted) {
+            const group = this.world.cellGroup(cell);
+            const held = decision.lod === TERMINALS && cell.batches.some((b) => this.heldBack(b, admitted));
             if (visible) {
                 ++stats.visible;
                 ++stats.cells[decision.lod];
+                if (held) ++stats.cells.held;
             }
             const sse = Math.min(decision.sse, 1e6);
             const objects = [];
@@ -202,12 +221,14 @@ export class Streamer {
                     this.updateTrees(b, decision, treeDistance, frame);
                     continue;
                 }
-                const wantTerminals = decision.lod === TERMINALS;
+                // A batch whose terminal set the budget holds back draws as an extruded cell's.
+                const lod = decision.lod === TERMINALS && this.heldBack(b, admitted) ? EXTRUDED : decision.lod;
+                const wantTerminals = lod === TERMINALS;
                 this.request(b, 'extruded', frame);
                 if (wantTerminals) this.request(b, 'terminal', frame);
                 const ext = this.pick(b.extruded_set, b.shown.extruded);
-                let term = wantTerminals || decision.lod === EXTRUDED ? this.pickTerminals(b) : null;
-                if (decision.lod === EXTRUDED && ext) term = null; // LOD0 is enough here
+                let term = wantTerminals || lod === EXTRUDED ? this.pickTerminals(b) : null;
+                if (lod === EXTRUDED && ext) term = null; // LOD0 is enough here
                 b.shown = { extruded: ext, terminal: term };
                 if (term) this.showTerminals(b, term, frame);
                 if (ext) {
@@ -238,6 +259,43 @@ export class Streamer {
         Object.assign(this.stats, stats);
     }
 
+    // The terminal sets of building batches this update may draw (terminal_budget.js): those of
+    // terminal cells, highest priority first, within the budget less the cached bytes of what
+    // every frame pins regardless (the batches' extruded sets, the tree batches' content).
+    admitTerminals(wanted) {
+        this.measure();
+        const perMember = bytesPerMember(this.measured.values());
+        const candidates = [];
+        let pinnedAnyway = 0;
+        for (const { cell, decision, visible } of wanted)
+            for (const b of cell.batches) {
+                pinnedAnyway += this.cache.bytesOf(this.pick(b.extruded_set, b.shown.extruded));
+                if (this.grammar(b.grammar)?.kind === 'tree') {
+                    pinnedAnyway += this.cache.bytesOf(b.shown.terminal);
+                    continue;
+                }
+                if (decision.lod !== TERMINALS) continue;
+                const url = b.terminal_set;
+                const bytes = this.measured.get(url)?.bytes ?? Math.max(this.cache.bytesOf(url), perMember(b.grammar) * b.members);
+                candidates.push({ url, priority: terminalPriority(visible, Math.min(decision.sse, 1e6)), bytes, drawn: b.shown.terminal === url });
+            }
+        const room = Math.max(this.cache.budget - pinnedAnyway, 0);
+        const admitted = admitTerminalSets(candidates, room);
+        this.budget = { room, wanted: candidates.length, admitted: admitted.size };
+        return admitted;
+    }
+
+    heldBack(b, admitted) {
+        return this.grammar(b.grammar)?.kind !== 'tree' && !admitted.has(b.terminal_set);
+    }
+
+    // Records the bytes of the cached building terminal sets whose GPU objects are built.
+    measure() {
+        for (const { url, value, bytes } of this.cache.list())
+            if (value.kind === 'terminal' && value.terminals && this.grammar(value.grammar)?.kind !== 'tree')
+                this.measured.set(url, { grammar: value.grammar, members: value.members, bytes });
+    }
+
     pick(url, old) {
         return this.cache.has(url) ? url : old && this.cache.has(old) ? old : null;
     }
@@ -252,8 +310,8 @@ export class Streamer {
     request(b, kind, frame) {
         const url = kind === 'terminal' ? b.terminal_set : b.extruded_set;
         if (this.cache.has(url)) return;
-        const base = kind === 'terminal' ? (frame.visible ? 2e6 : 0) : frame.visible ? 3e6 : 1e6;
-        frame.requests.push({ url, kind, grammar: b.grammar, priority: base + frame.sse });
+        const priority = (kind === 'terminal' ? terminalPriority : extrudedPriority)(frame.visible, frame.sse);
+        frame.requests.push({ url, kind, grammar: b.grammar, members: b.members, priority });
     }
 
     // `cut`: a tree batch's TreeBillboards, whose billboard trees' terminals are not drawn.

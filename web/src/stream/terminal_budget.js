@@ -1,0 +1,56 @@
+// Which terminal sets the viewer may hold. The content cache evicts what a frame does not draw,
+// but what it draws is pinned, so a view that wants more terminal sets than the budget holds
+// grew past it without bound (the thesis city's street view held 0.9 GB against 384 MiB). As
+// the native renderer's terminal arena does (sets beyond it draw at LOD1 or LOD0), the viewer
+// admits the terminal sets a frame wants highest priority first (in view, then by screen-space
+// error: the nearest first) while their bytes fit in what the budget leaves after the content
+// every frame pins anyway (extruded sets, trees); a batch whose set is not admitted draws its
+// extruded set (LOD0), and its terminal set is neither fetched nor pinned.
+
+// A set drawn now keeps its place against a rival whose priority is less than this much higher,
+// so that a camera standing at the cut does not fetch and evict the same sets over and over.
+export const DRAWN_PRIORITY_FACTOR = 1.25;
+
+// Per grammar, the mean bytes per member (building) of the terminal sets measured so far
+// (`measured`: {grammar, members, bytes}, decoded records and GPU objects together); for a
+// grammar with none, the mean over all grammars; with none measured at all, 0. An unmeasured
+// set thus costs nothing in the estimate: the fetch queue takes the admitted sets highest
+// priority first, a few at a time, and the first one measured prices the rest (a building
+// takes 150 to 170 KiB in the default and thesis cities' residential sets, a tower 0.6 to 1.6
+// MiB). A fixed guess instead could hold every set back for good where it guessed high, since
+// nothing would ever be measured.
+export function bytesPerMember(measured) {
+    const sums = new Map();
+    let all = { bytes: 0, members: 0 };
+    for (const e of measured) {
+        if (!(e.members > 0)) continue;
+        const sum = sums.get(e.grammar) ?? { bytes: 0, members: 0 };
+        sum.bytes += e.bytes;
+        sum.members += e.members;
+        sums.set(e.grammar, sum);
+        all = { bytes: all.bytes + e.bytes, members: all.members + e.members };
+    }
+    const fallback = all.members > 0 ? all.bytes / all.members : 0;
+    return (grammar) => {
+        const sum = sums.get(grammar);
+        return sum ? sum.bytes / sum.members : fallback;
+    };
+}
+
+// `candidates`: {url, priority, bytes, drawn}, bytes known (cached) or estimated. Returns the set
+// of urls admitted: the longest run in priority order (drawn sets favoured by
+// DRAWN_PRIORITY_FACTOR) whose bytes sum to at most `room`. The run stops at the first set that
+// does not fit, so a far set never takes the place of a nearer one.
+export function admitTerminalSets(candidates, room) {
+    const rank = (c) => c.priority * (c.drawn ? DRAWN_PRIORITY_FACTOR : 1);
+    const ordered = [...candidates].sort((a, b) => rank(b) - rank(a));
+    const admitted = new Set();
+    let used = 0;
+    for (const c of ordered) {
+        if (admitted.has(c.url)) continue;
+        if (!(used + c.bytes <= room)) break;
+        used += c.bytes;
+        admitted.add(c.url);
+    }
+    return admitted;
+}
