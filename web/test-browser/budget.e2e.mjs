@@ -76,7 +76,8 @@ test('the cache budget holds the farthest terminal cell at LOD0 and the cache wi
         assert.ok(tight.state.terminalBudget.admitted > 0, JSON.stringify(tight.state.terminalBudget));
         assert.match(stats, /held at LOD0 by the cache budget/);
         for (const c of tightCells) assert.ok(c.drawn.every((kind) => kind !== null), `cell ${c.id} draws ${c.drawn}`);
-        // A held cell lies no nearer than any cell that kept its terminals.
+        // A held cell lies no nearer than any cell that kept its terminals (the room leaves out
+        // only the farthest set, and every nearer one comes before it).
         const terminalsIn = (c) => c.lod === 'terminals' && c.drawn.includes('terminal');
         const heldIn = (c) => c.lod === 'terminals' && !c.drawn.includes('terminal');
         const kept = tightCells.filter(terminalsIn), held = tightCells.filter(heldIn);

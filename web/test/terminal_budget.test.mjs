@@ -10,12 +10,13 @@ test('sets are admitted highest priority first while their bytes fit', () => {
     const candidates = [set('far', 10, 40), set('near', 100, 50), set('mid', 50, 30)];
     assert.deepEqual([...admitTerminalSets(candidates, 80)], ['near', 'mid']);
     assert.deepEqual([...admitTerminalSets(candidates, 120)], ['near', 'mid', 'far']);
-    assert.deepEqual([...admitTerminalSets(candidates, 49)], [], 'the first does not fit: none is');
+    assert.deepEqual([...admitTerminalSets(candidates, 29)], [], 'none fits');
 });
 
-test('a smaller set behind one that does not fit is not admitted in its place', () => {
-    const candidates = [set('near', 100, 50), set('mid', 50, 60), set('far', 10, 1)];
-    assert.deepEqual([...admitTerminalSets(candidates, 100)], ['near']);
+test('a set that does not fit is passed over, and smaller ones after it take the room', () => {
+    const candidates = [set('near', 100, 50), set('mid', 50, 60), set('far', 10, 40), set('farther', 5, 20)];
+    assert.deepEqual([...admitTerminalSets(candidates, 100)], ['near', 'far']);
+    assert.deepEqual([...admitTerminalSets([set('huge', 100, 500), set('small', 1, 5)], 100)], ['small']);
 });
 
 test('a set drawn now keeps its place against a slightly higher priority', () => {
@@ -28,7 +29,7 @@ test('extreme rooms and sizes: nothing fits in 0 or NaN, a NaN-sized set is neve
     assert.equal(admitTerminalSets([set('a', 1, 1)], 0).size, 0);
     assert.equal(admitTerminalSets([set('a', 1, 1)], NaN).size, 0);
     assert.equal(admitTerminalSets([set('a', 1, 0)], 0).size, 1, 'an empty set fits anywhere');
-    assert.deepEqual([...admitTerminalSets([set('a', 2, NaN), set('b', 1, 1)], 10)], []);
+    assert.deepEqual([...admitTerminalSets([set('a', 2, NaN), set('b', 1, 1)], 10)], ['b']);
     assert.deepEqual([...admitTerminalSets([set('a', 2, 5), set('a', 1, 5)], 6)], ['a']);
     assert.equal(admitTerminalSets([], 100).size, 0);
 });

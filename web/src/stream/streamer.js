@@ -59,9 +59,10 @@ export class Streamer {
         });
         this.stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
         this.budget = { room: 0, wanted: 0, admitted: 0 }; // the latest admitTerminals
-        // Building terminal sets' bytes as last cached with their GPU objects, kept after they
-        // are evicted, so that a set that did not fit is not fetched again to learn it again.
-        this.measured = new Map(); // url -> {grammar, members, bytes}
+        // Building terminal sets' bytes as last cached, kept after they are evicted, so that a
+        // set that did not fit is not fetched again: with its GPU objects (built), or, for one
+        // never drawn, its decoded records alone, a lower bound that still tells it does not fit.
+        this.measured = new Map(); // url -> {grammar, members, bytes, built}
         this.frustum = new THREE.Frustum();
         this.box = new THREE.Box3();
     }
@@ -264,7 +265,7 @@ export class Streamer {
     // every frame pins regardless (the batches' extruded sets, the tree batches' content).
     admitTerminals(wanted) {
         this.measure();
-        const perMember = bytesPerMember(this.measured.values());
+        const perMember = bytesPerMember([...this.measured.values()].filter((m) => m.built));
         const candidates = [];
         let pinnedAnyway = 0;
         for (const { cell, decision, visible } of wanted)
@@ -289,11 +290,14 @@ export class Streamer {
         return this.grammar(b.grammar)?.kind !== 'tree' && !admitted.has(b.terminal_set);
     }
 
-    // Records the bytes of the cached building terminal sets whose GPU objects are built.
+    // Records the bytes of the cached building terminal sets (measured).
     measure() {
-        for (const { url, value, bytes } of this.cache.list())
-            if (value.kind === 'terminal' && value.terminals && this.grammar(value.grammar)?.kind !== 'tree')
-                this.measured.set(url, { grammar: value.grammar, members: value.members, bytes });
+        for (const { url, value, bytes } of this.cache.list()) {
+            if (value.kind !== 'terminal' || this.grammar(value.grammar)?.kind === 'tree') continue;
+            const built = !!value.terminals, before = this.measured.get(url);
+            if (!built && before?.built) continue;
+            this.measured.set(url, { grammar: value.grammar, members: value.members, bytes, built });
+        }
     }
 
     pick(url, old) {

@@ -3,7 +3,7 @@
 // grew past it without bound (the thesis city's street view held 0.9 GB against 384 MiB). As
 // the native renderer's terminal arena does (sets beyond it draw at LOD1 or LOD0), the viewer
 // admits the terminal sets a frame wants highest priority first (in view, then by screen-space
-// error: the nearest first) while their bytes fit in what the budget leaves after the content
+// error: the nearest first), each whose bytes fit in what the budget leaves after the content
 // every frame pins anyway (extruded sets, trees); a batch whose set is not admitted draws its
 // extruded set (LOD0), and its terminal set is neither fetched nor pinned.
 
@@ -38,17 +38,17 @@ export function bytesPerMember(measured) {
 }
 
 // `candidates`: {url, priority, bytes, drawn}, bytes known (cached) or estimated. Returns the set
-// of urls admitted: the longest run in priority order (drawn sets favoured by
-// DRAWN_PRIORITY_FACTOR) whose bytes sum to at most `room`. The run stops at the first set that
-// does not fit, so a far set never takes the place of a nearer one.
+// of urls admitted: in priority order (drawn sets favoured by DRAWN_PRIORITY_FACTOR), each set
+// whose bytes fit in what `room` has left. A set that does not fit is passed over and a smaller
+// one after it may still take the room: in the thesis city a tower cell's set takes hundreds
+// of megabytes, and stopping at it left a tight budget's room empty.
 export function admitTerminalSets(candidates, room) {
     const rank = (c) => c.priority * (c.drawn ? DRAWN_PRIORITY_FACTOR : 1);
     const ordered = [...candidates].sort((a, b) => rank(b) - rank(a));
     const admitted = new Set();
     let used = 0;
     for (const c of ordered) {
-        if (admitted.has(c.url)) continue;
-        if (!(used + c.bytes <= room)) break;
+        if (admitted.has(c.url) || !(used + c.bytes <= room)) continue;
         used += c.bytes;
         admitted.add(c.url);
     }
