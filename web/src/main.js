@@ -15,7 +15,7 @@ import { Streamer } from './stream/streamer.js';
 import { showAttribution } from './ui/attribution.js';
 import { Messages } from './ui/messages.js';
 import { Picker } from './ui/picker.js';
-import { queryNumber } from './ui/query_numbers.js';
+import { queryCamera, queryChoice, queryNumber } from './ui/query_options.js';
 import { StatsPanel } from './ui/stats_panel.js';
 import { TuningPanel } from './ui/tuning_panel.js';
 import * as THREE from 'three';
@@ -27,9 +27,9 @@ const canvas = document.getElementById('view');
 
 // The opening view: above the south of the city, looking north over it, unless ?camera=x,y,z,yaw,pitch (degrees).
 function openingCamera(cells) {
-    const given = params.get('camera')?.split(',').map(Number);
-    if (given?.length === 5 && given.every(Number.isFinite))
-        return { position: given.slice(0, 3), yaw: (given[3] * Math.PI) / 180, pitch: (given[4] * Math.PI) / 180 };
+    const { value: given, problem } = queryCamera(params);
+    if (problem) messages.add(problem);
+    if (given) return given;
     const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
     for (const c of cells)
         for (let i = 0; i < 3; ++i) {
@@ -69,7 +69,9 @@ async function start() {
     // viewer's memory within its budget").
     const budget = queryNumber(params, 'budget', { fallback: 1024, min: 0, max: 65536 });
     const concurrency = queryNumber(params, 'concurrency', { fallback: 6, min: 1, max: 64, integer: true });
-    for (const { problem } of [budget, concurrency]) if (problem) messages.add(problem);
+    const treeForm = queryChoice(params, 'trees', ['auto', 'terminals', 'billboards', 'none'], 'auto');
+    const mode = queryChoice(params, 'mode', ['fly', 'walk'], 'fly');
+    for (const { problem } of [budget, concurrency, treeForm, mode]) if (problem) messages.add(problem);
     // ?occlusion=1 or 0 turns occlusion culling on or off; by default it is on where the GL
     // renders on the CPU.
     const occlusionParam = params.get('occlusion');
@@ -81,7 +83,7 @@ async function start() {
         libraries,
         impostors,
         trees,
-        treeForm: params.get('trees') ?? 'auto',
+        treeForm: treeForm.value,
         materials,
         budgetBytes: budget.value * 1024 * 1024,
         concurrency: concurrency.value,
@@ -97,7 +99,7 @@ async function start() {
     };
     world.groundZ = streamer.cells.length ? Math.min(...streamer.cells.map((c) => c.origin[2])) : 0;
     const controls = new CameraControls(canvas, { ...openingCamera(index.cells), groundAt });
-    if (params.get('mode') === 'walk') controls.setMode('walk');
+    if (mode.value === 'walk') controls.setMode('walk');
 
     let reloading = null;
     async function reloadIndex() {

@@ -3,7 +3,7 @@
 // the view wants, none is held back; with one that holds all but the farthest, the cache stays
 // within it, the nearest terminal cells keep their terminals, the farther ones draw their
 // extruded sets (LOD0), and no batch in view draws nothing. ?budget=0 holds every set back;
-// a malformed budget is refused with a message and the default used. Screenshots go to
+// malformed options are refused with a message and their defaults used. Screenshots go to
 // $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -74,7 +74,7 @@ test('the cache budget holds the farthest terminal cell at LOD0 and the cache wi
         assert.ok(tight.state.cache.bytes <= budget * MiB, `${tight.state.cache.bytes} bytes cached`);
         assert.ok(tight.state.streamer.cells.held > 0, JSON.stringify(tight.state.streamer.cells));
         assert.ok(tight.state.terminalBudget.admitted > 0, JSON.stringify(tight.state.terminalBudget));
-        assert.match(stats, /held at LOD0 by the cache budget/);
+        assert.match(stats, /held back by the cache budget/);
         for (const c of tightCells) assert.ok(c.drawn.every((kind) => kind !== null), `cell ${c.id} draws ${c.drawn}`);
         // A held cell lies no nearer than any cell that kept its terminals (the room leaves out
         // only the farthest set, and every nearer one comes before it).
@@ -90,11 +90,15 @@ test('the cache budget holds the farthest terminal cell at LOD0 and the cache wi
         assert.equal(none.state.streamer.terminals[4] + none.state.streamer.terminals[3] + none.state.streamer.terminals[2], 0);
         for (const c of await cellsInView(page)) assert.ok(c.drawn.every((kind) => kind === 'extruded'), `cell ${c.id} draws ${c.drawn}`);
 
-        // A malformed budget: refused, said so, and the default (which holds everything) used.
-        const bad = await settledView(page, `${base}?aa=0&budget=lots&concurrency=0`);
+        // Malformed options: refused, said so, and the defaults used (the budget's holds
+        // everything; the opening view's camera, the trees by distance).
+        const bad = await settledView(page, `${base}?aa=0&budget=lots&concurrency=0&trees=billbords&camera=1,2`);
         const messages = await page.locator('#messages').textContent();
         assert.match(messages, /\?budget=lots refused: budget must be a number from 0 to 65536; using 1024/);
         assert.match(messages, /\?concurrency=0 refused/);
+        assert.match(messages, /\?trees=billbords refused/);
+        assert.match(messages, /\?camera=1,2 refused/);
+        assert.deepEqual(bad.state.position, whole.state.position, 'the opening view');
         assert.equal(bad.state.cache.budget, 1024 * MiB);
         assert.equal(bad.state.streamer.cells.held, 0);
     });

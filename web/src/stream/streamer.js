@@ -6,8 +6,8 @@
 // wanted. Until a wanted payload arrives a batch keeps drawing what it drew before (the old
 // version after an edit, the extruded set before its terminals), so nothing leaves a hole.
 // Decoded payloads and their GPU objects live in a byte-budgeted LRU, and a view that wants more
-// terminal sets than the budget holds draws the lowest-priority ones' batches at LOD0
-// (terminal_budget.js).
+// terminal sets than the budget holds draws the lowest-priority ones' batches at LOD0, their
+// trees as billboards (terminal_budget.js).
 import * as THREE from 'three';
 
 import { getBinary } from '../api.js';
@@ -59,7 +59,7 @@ export class Streamer {
         });
         this.stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
         this.budget = { room: 0, wanted: 0, admitted: 0 }; // the latest admitTerminals
-        // Building terminal sets' bytes as last cached, kept after they are evicted, so that a
+        // Terminal sets' bytes as last cached, kept after they are evicted, so that a
         // set that did not fit is not fetched again: with its GPU objects (built), or, for one
         // never drawn, its decoded records alone, a lower bound that still tells it does not fit.
         this.measured = new Map(); // url -> {grammar, members, bytes, built}
@@ -204,10 +204,10 @@ export class Streamer {
             group.visible = visible;
             if (visible || near) wanted.push({ cell, decision, visible });
         }
-        const admitted = this.admitTerminals(wanted);
+        const heldBack = this.admitTerminals(wanted, treeDistance);
         for (const { cell, decision, visible } of wanted) {
             const group = this.world.cellGroup(cell);
-            const held = decision.lod === TERMINALS && cell.batches.some((b) => this.heldBack(b, admitted));
+            const held = cell.batches.some((b) => heldBack.has(b.terminal_set));
             if (visible) {
                 ++stats.visible;
                 ++stats.cells[decision.lod];
@@ -216,14 +216,14 @@ export class Streamer {
             const sse = Math.min(decision.sse, 1e6);
             const objects = [];
             const local = [p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]]; // the camera, cell-local
-            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests, view: terminalView, occlusion };
+            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests, view: terminalView, occlusion, heldBack };
             for (const b of cell.batches) {
                 if (this.grammar(b.grammar)?.kind === 'tree') {
                     this.updateTrees(b, decision, treeDistance, frame);
                     continue;
                 }
                 // A batch whose terminal set the budget holds back draws as an extruded cell's.
-                const lod = decision.lod === TERMINALS && this.heldBack(b, admitted) ? EXTRUDED : decision.lod;
+                const lod = heldBack.has(b.terminal_set) ? EXTRUDED : decision.lod;
                 const wantTerminals = lod === TERMINALS;
                 this.request(b, 'extruded', frame);
                 if (wantTerminals) this.request(b, 'terminal', frame);
@@ -260,10 +260,12 @@ export class Streamer {
         Object.assign(this.stats, stats);
     }
 
-    // The terminal sets of building batches this update may draw (terminal_budget.js): those of
-    // terminal cells, highest priority first, within the budget less the cached bytes of what
-    // every frame pins regardless (the batches' extruded sets, the tree batches' content).
-    admitTerminals(wanted) {
+    // The terminal sets this update wants but the budget holds back (terminal_budget.js): the
+    // candidates are those of building batches in terminal cells and of tree batches near
+    // enough for terminals (treesNear), admitted highest priority first within the budget less
+    // the cached bytes of what every frame pins regardless (the batches' extruded sets, and the
+    // terminals of edited trees whose species is not baked yet).
+    admitTerminals(wanted, treeDistance) {
         this.measure();
         const perMember = bytesPerMember([...this.measured.values()].filter((m) => m.built));
         const candidates = [];
@@ -271,11 +273,11 @@ export class Streamer {
         for (const { cell, decision, visible } of wanted)
             for (const b of cell.batches) {
                 pinnedAnyway += this.cache.bytesOf(this.pick(b.extruded_set, b.shown.extruded));
-                if (this.grammar(b.grammar)?.kind === 'tree') {
-                    pinnedAnyway += this.cache.bytesOf(b.shown.terminal);
+                const trees = this.grammar(b.grammar)?.kind === 'tree';
+                if (trees ? !this.treesNear(decision, treeDistance) : decision.lod !== TERMINALS) {
+                    if (trees) pinnedAnyway += this.cache.bytesOf(b.shown.terminal);
                     continue;
                 }
-                if (decision.lod !== TERMINALS) continue;
                 const url = b.terminal_set;
                 const bytes = this.measured.get(url)?.bytes ?? Math.max(this.cache.bytesOf(url), perMember(b.grammar) * b.members);
                 candidates.push({ url, priority: terminalPriority(visible, Math.min(decision.sse, 1e6)), bytes, drawn: b.shown.terminal === url });
@@ -283,17 +285,18 @@ export class Streamer {
         const room = Math.max(this.cache.budget - pinnedAnyway, 0);
         const admitted = admitTerminalSets(candidates, room);
         this.budget = { room, wanted: candidates.length, admitted: admitted.size };
-        return admitted;
+        return new Set(candidates.filter((c) => !admitted.has(c.url)).map((c) => c.url));
     }
 
-    heldBack(b, admitted) {
-        return this.grammar(b.grammar)?.kind !== 'tree' && !admitted.has(b.terminal_set);
+    // Whether a tree batch's trees near the camera are drawn from its terminals (updateTrees).
+    treesNear(decision, treeDistance) {
+        return this.treeForm === 'terminals' || (this.treeForm !== 'billboards' && decision.lod === TERMINALS && decision.distance < treeDistance);
     }
 
-    // Records the bytes of the cached building terminal sets (measured).
+    // Records the bytes of the cached terminal sets (measured).
     measure() {
         for (const { url, value, bytes } of this.cache.list()) {
-            if (value.kind !== 'terminal' || this.grammar(value.grammar)?.kind === 'tree') continue;
+            if (value.kind !== 'terminal') continue;
             const built = !!value.terminals, before = this.measured.get(url);
             if (!built && before?.built) continue;
             this.measured.set(url, { grammar: value.grammar, members: value.members, bytes, built });
@@ -345,8 +348,8 @@ export class Streamer {
             b.drawn = null;
             return;
         }
-        const near =
-            this.treeForm === 'terminals' || (this.treeForm !== 'billboards' && decision.lod === TERMINALS && decision.distance < treeDistance);
+        // Near trees whose terminal set the budget holds back are billboards too.
+        const near = this.treesNear(decision, treeDistance) && !frame.heldBack.has(b.terminal_set);
         let boards = null;
         if (this.trees.enabled && this.treeForm !== 'terminals') {
             this.request(b, 'extruded', frame);

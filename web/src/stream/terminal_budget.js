@@ -4,14 +4,15 @@
 // the native renderer's terminal arena does (sets beyond it draw at LOD1 or LOD0), the viewer
 // admits the terminal sets a frame wants highest priority first (in view, then by screen-space
 // error: the nearest first), each whose bytes fit in what the budget leaves after the content
-// every frame pins anyway (extruded sets, trees); a batch whose set is not admitted draws its
-// extruded set (LOD0), and its terminal set is neither fetched nor pinned.
+// every frame pins anyway (extruded sets); a building batch whose set is not admitted draws its
+// extruded set (LOD0), a tree batch its trees as billboards, and the set is neither fetched
+// nor pinned.
 
 // A set drawn now keeps its place against a rival whose priority is less than this much higher,
 // so that a camera standing at the cut does not fetch and evict the same sets over and over.
 export const DRAWN_PRIORITY_FACTOR = 1.25;
 
-// Per grammar, the mean bytes per member (building) of the terminal sets measured so far
+// Per grammar, the mean bytes per member (building or tree) of the terminal sets measured so far
 // (`measured`: {grammar, members, bytes}, decoded records and GPU objects together); for a
 // grammar with none, the mean over all grammars; with none measured at all, 0. An unmeasured
 // set thus costs nothing in the estimate: the fetch queue takes the admitted sets highest
