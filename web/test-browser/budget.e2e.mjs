@@ -10,17 +10,11 @@ import fs from 'node:fs';
 import path from 'node:path';
 import test from 'node:test';
 
-import { artifactsDir as artifacts, configsDir as configs, settledView, withServedScene } from './harness.mjs';
+import { artifactsDir as artifacts, housesScene, settledView, withServedScene } from './harness.mjs';
 
 const MiB = 1024 * 1024;
 
-const scene = {
-    name: 'budget-test', seed: 5, cell_size: 60,
-    grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
-    buildings: [{ source: 'procedural', count: 40, block_size: 50, street_width: 10,
-        districts: [{ grammar: 'residential', share: 1, floors: [2, 4], lot: [14, 16] }] }],
-    lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
-};
+const scene = housesScene({ name: 'budget-test', seed: 5, cellSize: 60, count: 40, floors: [2, 4] });
 
 // Per visible cell: its LOD, its distance, and per batch what it draws.
 async function cellsInView(page) {

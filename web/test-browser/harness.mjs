@@ -113,6 +113,19 @@ export const testBinary = process.env.HEXLOD_BINARY;
 export const configsDir = process.env.HEXLOD_CONFIGS_DIR ?? path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'configs');
 export const artifactsDir = process.env.HEXLOD_WEB_ARTIFACTS ?? path.join(os.tmpdir(), 'hexlod-web-artifacts');
 
+// A scene config of blocks of residential houses, no trees, the shipped LOD budget, for tests
+// that need only houses: `count` of them with `floors` [min, max] storeys in cells of
+// `cellSize` metres.
+export function housesScene({ name, seed, cellSize, count, floors }) {
+    return {
+        name, seed, cell_size: cellSize,
+        grammars: { residential: { file: path.join(configsDir, 'grammars', 'residential.grammar') } },
+        buildings: [{ source: 'procedural', count, block_size: 50, street_width: 10,
+            districts: [{ grammar: 'residential', share: 1, floors, lot: [14, 16] }] }],
+        lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
+    };
+}
+
 // A browser test on a scene of its own (`scene`, a scene config object): written into a fresh
 // folder, served by `hexlod serve` with small impostors baked into a store in that folder (a
 // quick bake that leaves nothing behind), chromium opened at `viewport`, and

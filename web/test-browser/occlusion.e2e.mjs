@@ -8,19 +8,12 @@ import fs from 'node:fs';
 import path from 'node:path';
 import test from 'node:test';
 
-import { artifactsDir as artifacts, configsDir as configs, imageDifference, settledView, withServedScene } from './harness.mjs';
+import { artifactsDir as artifacts, housesScene, imageDifference, settledView, withServedScene } from './harness.mjs';
 
 const width = 640, height = 360;
 
-// Rows of three-to-five-storey houses, no trees, the shipped LOD budget: at eye level the
-// first row hides most of the rest.
-const scene = {
-    name: 'occlusion-test', seed: 11, cell_size: 80,
-    grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
-    buildings: [{ source: 'procedural', count: 48, block_size: 50, street_width: 10,
-        districts: [{ grammar: 'residential', share: 1, floors: [3, 5], lot: [14, 16] }] }],
-    lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
-};
+// Rows of three-to-five-storey houses: at eye level the first row hides most of the rest.
+const scene = housesScene({ name: 'occlusion-test', seed: 11, cellSize: 80, count: 48, floors: [3, 5] });
 
 // Of every extruded set loaded, the building reaching farthest south: its footprint's bounds
 // (world x, y) and its base.

@@ -12,29 +12,26 @@
 // so that a camera standing at the cut does not fetch and evict the same sets over and over.
 export const DRAWN_PRIORITY_FACTOR = 1.25;
 
-// Per grammar, the mean bytes per member (building or tree) of the terminal sets measured so far
-// (`measured`: {grammar, members, bytes}, decoded records and GPU objects together); for a
-// grammar with none, the mean over all grammars; with none measured at all, 0. An unmeasured
-// set thus costs nothing in the estimate: the fetch queue takes the admitted sets highest
-// priority first, a few at a time, and the first one measured prices the rest (a building
-// takes 150 to 170 KiB in the default and thesis cities' residential sets, a tower 0.6 to 1.6
-// MiB). A fixed guess instead could hold every set back for good where it guessed high, since
-// nothing would ever be measured.
+// Per grammar, the mean bytes per member (building or tree) of its terminal sets measured so
+// far (`measured`: {grammar, members, bytes}, decoded records and GPU objects together); 0 for
+// a grammar with none. An unmeasured set thus costs nothing in the estimate: the fetch queue
+// takes the admitted sets highest priority first, a few at a time, and the first one measured
+// prices the rest of its grammar's. Members differ too much to price one grammar's by
+// another's (a house takes 150 to 170 KiB in the default and thesis cities, a tower 0.6 to 1.6
+// MiB, a tree far less), and a guess that is too high holds sets back for good, since nothing
+// held is ever measured.
 export function bytesPerMember(measured) {
     const sums = new Map();
-    let all = { bytes: 0, members: 0 };
     for (const e of measured) {
         if (!(e.members > 0)) continue;
         const sum = sums.get(e.grammar) ?? { bytes: 0, members: 0 };
         sum.bytes += e.bytes;
         sum.members += e.members;
         sums.set(e.grammar, sum);
-        all = { bytes: all.bytes + e.bytes, members: all.members + e.members };
     }
-    const fallback = all.members > 0 ? all.bytes / all.members : 0;
     return (grammar) => {
         const sum = sums.get(grammar);
-        return sum ? sum.bytes / sum.members : fallback;
+        return sum ? sum.bytes / sum.members : 0;
     };
 }
 
