@@ -3,7 +3,8 @@
 // frames rendered by hand, each timed until a one-pixel readPixels returns (so the time
 // includes the GL work, which gl.finish() in chromium does not wait for):
 // - the whole frame, with its draw calls, triangles and terminals per LOD, and the cache's
-//   bytes (payloads and the GPU buffers made from them);
+//   bytes (payloads and the GPU buffers made from them), in all and by payload kind, with the
+//   cells in view per LOD and those whose terminal sets the budget held back;
 // - the frame without the impostor meshes (LOD2 and LOD3, and the tree billboards), and
 //   without the tree billboards alone;
 // - the whole frame with a one-pixel scissor, which leaves the vertex and primitive work and
