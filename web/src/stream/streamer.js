@@ -59,9 +59,9 @@ export class Streamer {
         });
         this.stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
         this.budget = { room: 0, wanted: 0, admitted: 0 }; // the latest admitTerminals
-        // Terminal sets' bytes as last cached, kept after they are evicted, so that a
-        // set that did not fit is not fetched again: with its GPU objects (built), or, for one
-        // never drawn, its decoded records alone, a lower bound that still tells it does not fit.
+        // Terminal sets' bytes as last cached, kept after they are evicted, so that a set that
+        // did not fit is not fetched again: with its GPU objects (built), or, for one never
+        // drawn, its decoded records alone, a lower bound that still tells it does not fit.
         this.measured = new Map(); // url -> {grammar, members, bytes, built}
         this.frustum = new THREE.Frustum();
         this.box = new THREE.Box3();
@@ -189,7 +189,7 @@ export class Streamer {
         // The base volumes the last update left in the cell groups, seen from this view.
         const occlusion = this.occluders ? this.occluders.update(view, this.occluderVersion) : null;
         const p = view.position;
-        const wanted = []; // the cells this update draws or fetches for: {cell, decision, visible}
+        const wanted = []; // the cells this update draws or fetches for: {cell, decision, visible, sse}
         for (const cell of this.cells) {
             const decision = decideCell(this.lodOf.get(cell.id), cell.bounds, view, this.profile);
             this.lodOf.set(cell.id, decision.lod);
@@ -202,10 +202,10 @@ export class Streamer {
             const group = this.world.cellGroup(cell);
             if (group.visible !== visible && group.children.some(isOccluder)) ++this.occluderVersion;
             group.visible = visible;
-            if (visible || near) wanted.push({ cell, decision, visible });
+            if (visible || near) wanted.push({ cell, decision, visible, sse: Math.min(decision.sse, 1e6) });
         }
         const heldBack = this.admitTerminals(wanted, treeDistance);
-        for (const { cell, decision, visible } of wanted) {
+        for (const { cell, decision, visible, sse } of wanted) {
             const group = this.world.cellGroup(cell);
             const held = cell.batches.some((b) => heldBack.has(b.terminal_set));
             if (visible) {
@@ -213,7 +213,6 @@ export class Streamer {
                 ++stats.cells[decision.lod];
                 if (held) ++stats.cells.held;
             }
-            const sse = Math.min(decision.sse, 1e6);
             const objects = [];
             const local = [p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]]; // the camera, cell-local
             const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests, view: terminalView, occlusion, heldBack };
@@ -262,30 +261,37 @@ export class Streamer {
 
     // The terminal sets this update wants but the budget holds back (terminal_budget.js): the
     // candidates are those of building batches in terminal cells and of tree batches near
-    // enough for terminals (treesNear), admitted highest priority first within the budget less
-    // the cached bytes of what every frame pins regardless (the batches' extruded sets, and the
-    // terminals of edited trees whose species is not baked yet).
+    // enough for terminals (treesNear) whose trees billboards can stand for, admitted highest
+    // priority first within the budget less the cached bytes of what every frame pins
+    // regardless (the batches' extruded sets, and the other tree batches' terminals: edited
+    // trees whose species is not baked yet, or every near tree without species impostors).
     admitTerminals(wanted, treeDistance) {
         this.measure();
         const perMember = bytesPerMember([...this.measured.values()].filter((m) => m.built));
         const candidates = [];
         let pinnedAnyway = 0;
-        for (const { cell, decision, visible } of wanted)
+        const billboards = this.treesAsBillboards();
+        for (const { cell, decision, visible, sse } of wanted)
             for (const b of cell.batches) {
                 pinnedAnyway += this.cache.bytesOf(this.pick(b.extruded_set, b.shown.extruded));
                 const trees = this.grammar(b.grammar)?.kind === 'tree';
-                if (trees ? !this.treesNear(decision, treeDistance) : decision.lod !== TERMINALS) {
+                if (trees ? !(billboards && this.treesNear(decision, treeDistance)) : decision.lod !== TERMINALS) {
                     if (trees) pinnedAnyway += this.cache.bytesOf(b.shown.terminal);
                     continue;
                 }
                 const url = b.terminal_set;
                 const bytes = this.measured.get(url)?.bytes ?? Math.max(this.cache.bytesOf(url), perMember(b.grammar) * b.members);
-                candidates.push({ url, priority: terminalPriority(visible, Math.min(decision.sse, 1e6)), bytes, drawn: b.shown.terminal === url });
+                candidates.push({ url, priority: terminalPriority(visible, sse), bytes, drawn: b.shown.terminal === url });
             }
         const room = Math.max(this.cache.budget - pinnedAnyway, 0);
         const admitted = admitTerminalSets(candidates, room);
         this.budget = { room, wanted: candidates.length, admitted: admitted.size };
         return new Set(candidates.filter((c) => !admitted.has(c.url)).map((c) => c.url));
+    }
+
+    // Whether trees can be drawn as their species' billboards (served, and not turned off).
+    treesAsBillboards() {
+        return this.trees.enabled && this.treeForm !== 'terminals';
     }
 
     // Whether a tree batch's trees near the camera are drawn from its terminals (updateTrees).
@@ -351,7 +357,7 @@ export class Streamer {
         // Near trees whose terminal set the budget holds back are billboards too.
         const near = this.treesNear(decision, treeDistance) && !frame.heldBack.has(b.terminal_set);
         let boards = null;
-        if (this.trees.enabled && this.treeForm !== 'terminals') {
+        if (this.treesAsBillboards()) {
             this.request(b, 'extruded', frame);
             const ext = this.pick(b.extruded_set, b.shown.extruded);
             if (ext && this.trees.isReady) {
