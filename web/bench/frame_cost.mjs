@@ -52,10 +52,11 @@ try {
         };
         out.draw_calls = world.renderer.info.render.calls;
         out.triangles = world.renderer.info.render.triangles;
-        out.terminals = window.hexlod.state().streamer.terminals; // per LOD, and LOD4 drawn with coarse meshes
-        out.cache = window.hexlod.state().cache; // payloads and what they hold for the GPU, in bytes
-        out.cells = window.hexlod.state().streamer.cells; // in view, per LOD, and those the budget held at LOD0
-        out.terminal_budget = window.hexlod.state().terminalBudget;
+        const state = window.hexlod.state();
+        out.terminals = state.streamer.terminals; // per LOD, and LOD4 drawn with coarse meshes
+        out.cache = state.cache; // payloads and what they hold for the GPU, in bytes
+        out.cells = state.streamer.cells; // in view, per LOD, and those the budget held back
+        out.terminal_budget = state.terminalBudget;
         // The cache's bytes by payload kind and grammar kind ("terminal building", "extruded tree", ...).
         // And per building grammar, the bytes its terminal sets take per building.
         out.cache_by_kind = {};

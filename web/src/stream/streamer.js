@@ -275,7 +275,8 @@ export class Streamer {
             for (const b of cell.batches) {
                 pinnedAnyway += this.cache.bytesOf(this.pick(b.extruded_set, b.shown.extruded));
                 const trees = this.grammar(b.grammar)?.kind === 'tree';
-                if (trees ? !(billboards && this.treesNear(decision, treeDistance)) : decision.lod !== TERMINALS) {
+                const candidate = trees ? billboards && this.treesNear(decision, treeDistance) : decision.lod === TERMINALS;
+                if (!candidate) {
                     if (trees) pinnedAnyway += this.cache.bytesOf(b.shown.terminal);
                     continue;
                 }
