@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 import * as THREE from 'three';
 
-import { ImpostorQuads } from '../src/render/impostor_quads.js';
+import { ImpostorQuads, quadCorners } from '../src/render/impostor_quads.js';
 
 const material = new THREE.MeshBasicMaterial();
 
@@ -15,14 +15,24 @@ function matrix(seed) {
 
 test('every quad is the plane geometry the instanced mesh drew', () => {
     const plane = new THREE.PlaneGeometry(2, 2);
+    const corners = Array.from(plane.attributes.position.array).filter((_, i) => i % 3 !== 2); // x, y
     const quads = new ImpostorQuads(material, 3);
     quads.setMatrixAt(2, matrix(1));
     const positions = quads.geometry.attributes.position.array;
     const index = quads.geometry.index.array;
     for (let q = 0; q < 3; ++q) {
-        assert.deepEqual(Array.from(positions.subarray(12 * q, 12 * q + 12)), Array.from(plane.attributes.position.array));
+        assert.deepEqual(Array.from(positions.subarray(8 * q, 8 * q + 8)), corners);
         assert.deepEqual(Array.from(index.subarray(6 * q, 6 * q + 6)), Array.from(plane.index.array, (v) => v + 4 * q));
     }
+});
+
+test('corners take two bytes a vertex, and the index 16 bits while the vertices allow', () => {
+    assert.equal(quadCorners(16384).index.array.BYTES_PER_ELEMENT, 2); // vertices 0 to 65535
+    const large = quadCorners(16385);
+    assert.equal(large.index.array.BYTES_PER_ELEMENT, 4);
+    assert.equal(large.index.array[6 * 16384 + 1], 4 * 16384 + 2, 'the first quad past 16 bits');
+    assert.equal(large.position.itemSize, 2);
+    assert.equal(large.position.array.byteLength, 8 * 16385);
 });
 
 test('a quad matrix reaches all four vertices of its quad, and only those', () => {

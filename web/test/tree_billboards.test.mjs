@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import test from 'node:test';
 import * as THREE from 'three';
 
-import { ImpostorQuads } from '../src/render/impostor_quads.js';
+import { TreeQuads } from '../src/render/tree_quads.js';
 import { TreeBillboards } from '../src/render/tree_billboards.js';
 
 // Trees of one species on 2 m square footprints centred at the given points (cell-local).
@@ -29,11 +29,12 @@ const species = {
     generation: 0,
     species: [{ impostor: { centre: [0, 0, 5], radius: 4 } }],
     speciesOf: () => 0,
-    makeMesh: (s, capacity) => new ImpostorQuads(new THREE.MeshBasicMaterial(), capacity),
+    makeMesh: (s, capacity) => new TreeQuads(new THREE.MeshBasicMaterial(), capacity),
 };
 
 test('hidden billboards stay billboards for the cut but are not drawn', () => {
     const trees = new TreeBillboards(treeSet([[0, 50], [0, 300], [0, 400]]), species);
+    assert.equal(trees.gpuBytes, 3 * (12 + 4) + 3 * 68, 'bases and species, and a quad per tree');
     const spheres = [];
     const occlusion = (version) => ({ version, hidesSphere: (x, y, z, r) => (spheres.push([x, y, z, r]), y > 350) });
     trees.updateCut([0, 0, 0], 100, occlusion(1));

@@ -7,9 +7,24 @@
 // columns in xyz and its translation spread over their w (see QUAD_MATRIX_GLSL).
 import * as THREE from 'three';
 
+import { geometryBytes } from './geometry_bytes.js';
+
 // The quad's corners in the plane z = 0, as THREE.PlaneGeometry(2, 2) lays them out.
 const CORNERS = [-1, 1, 1, 1, -1, -1, 1, -1];
 const TRIANGLES = [0, 2, 1, 2, 3, 1];
+
+// The corners of `quads` quads, four vertices each, as a `position` attribute of two bytes a
+// vertex (the shaders read position.xy; z is 0) and their triangles' index, in 16 bits while
+// the vertices allow.
+export function quadCorners(quads) {
+    const positions = new Int8Array(8 * quads);
+    const index = new (4 * quads <= 65536 ? Uint16Array : Uint32Array)(6 * quads);
+    for (let q = 0; q < quads; ++q) {
+        positions.set(CORNERS, 8 * q);
+        for (let k = 0; k < 6; ++k) index[6 * q + k] = 4 * q + TRIANGLES[k];
+    }
+    return { position: new THREE.BufferAttribute(positions, 2), index: new THREE.BufferAttribute(index, 1) };
+}
 
 // GLSL: the quad's matrix, as InstancedMesh's `instanceMatrix` would give it.
 export const QUAD_MATRIX_GLSL = /* glsl */ `
@@ -31,24 +46,11 @@ class QuadMatrices {
     }
 }
 
-// Per quad: four corners (3 floats each), six indices and four copies of its matrix (12 floats).
-const VERTEX_BYTES_PER_QUAD = 4 * (4 * 3 + 6 + 4 * 12);
-// Per quad drawn: its matrix and its vertices.
-export const BYTES_PER_QUAD = 64 + VERTEX_BYTES_PER_QUAD;
-
 function quadGeometry(quads, old) {
     const geometry = new THREE.BufferGeometry();
-    const positions = new Float32Array(12 * quads);
-    const index = new Uint32Array(6 * quads);
-    for (let q = 0; q < quads; ++q) {
-        for (let v = 0; v < 4; ++v) {
-            positions[12 * q + 3 * v] = CORNERS[2 * v];
-            positions[12 * q + 3 * v + 1] = CORNERS[2 * v + 1];
-        }
-        for (let k = 0; k < 6; ++k) index[6 * q + k] = 4 * q + TRIANGLES[k];
-    }
-    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-    geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    const { position, index } = quadCorners(quads);
+    geometry.setAttribute('position', position);
+    geometry.setIndex(index);
     for (const name of ['quadX', 'quadY', 'quadZ']) {
         const array = new Float32Array(16 * quads);
         if (old) array.set(old.attributes[name].array);
@@ -80,7 +82,7 @@ export class ImpostorQuads extends THREE.Mesh {
 
     // Bytes held for the GPU: the quads' matrices and the vertices grown so far.
     get bytes() {
-        return this.instanceMatrix.array.byteLength + VERTEX_BYTES_PER_QUAD * (this.geometry.index.count / 6);
+        return this.instanceMatrix.array.byteLength + geometryBytes(this.geometry);
     }
 
     setMatrixAt(quad, matrix) {

@@ -9,7 +9,6 @@
 import * as THREE from 'three';
 
 import { movedEnough } from '../stream/lod_policy.js';
-import { BYTES_PER_QUAD } from './impostor_quads.js';
 
 export class TreeBillboards {
     // `set`: a decoded extruded set of a tree grammar; `species`: a TreeImpostors.
@@ -39,7 +38,7 @@ export class TreeBillboards {
             else perSpecies.set(s, (perSpecies.get(s) ?? 0) + 1);
         }
         this.treeIds = buildings.id;
-        this.meshes = new Map(); // species index -> ImpostorQuads, `count` the billboards drawn
+        this.meshes = new Map(); // species index -> TreeQuads, `shown` the billboards drawn
         this.spheres = new Map(); // species index -> its bounding sphere (tree space): x, y, z, radius
         for (const [s, capacity] of perSpecies) {
             const mesh = species.makeMesh(s, capacity);
@@ -55,8 +54,9 @@ export class TreeBillboards {
         this.lastCamera = null;
         this.lastDistance = -1;
         this.lastOcclusion = null;
-        // Each billboard's matrix and, once drawn, its quad's vertices.
-        this.gpuBytes = BYTES_PER_QUAD * (n - this.unmatched);
+        // The billboards' vertices, and the bases and species the cut reads.
+        this.gpuBytes = this.bases.byteLength + this.speciesOfTree.byteLength;
+        for (const mesh of this.meshes.values()) this.gpuBytes += mesh.bytes;
     }
 
     isBillboard(treeId) {
@@ -100,14 +100,13 @@ export class TreeBillboards {
                 }
             }
             const slot = filled.get(s) ?? 0;
-            this.meshes.get(s).instanceMatrix.array.set(b.subarray(3 * i, 3 * i + 3), 16 * slot + 12);
+            this.meshes.get(s).place(slot, b, 3 * i);
             filled.set(s, slot + 1);
         }
         this.count = 0;
         for (const [s, mesh] of this.meshes) {
-            mesh.count = filled.get(s) ?? 0;
-            mesh.instanceMatrix.needsUpdate = true;
-            this.count += mesh.count;
+            mesh.show(filled.get(s) ?? 0);
+            this.count += mesh.shown;
         }
         if (changed) ++this.version;
     }

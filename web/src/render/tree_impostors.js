@@ -12,23 +12,23 @@
 // a cutout at one half otherwise; the stored normals light it as the meshes are lit (lights.js).
 import * as THREE from 'three';
 
-import { ImpostorQuads, QUAD_MATRIX_GLSL } from './impostor_quads.js';
 import { loadTexture } from './impostors.js';
 import { FULL_SPHERE, IMPOSTOR_ATLAS_GLSL, TREE_VIEWS_GLSL } from './impostor_views.js';
 import { layoutTableUniforms, SPECIES_TABLE_RESOLUTION, VIEW_TABLE_GLSL } from './view_table.js';
 import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
+import { TreeQuads } from './tree_quads.js';
 
 const VERTEX = /* glsl */ `
 uniform vec4 sphere;      // centre xyz, radius (tree space)
 uniform vec3 boxLo, boxHi; // the species' box (tree space); the sphere's cube draws the square
 uniform vec3 atlasLayout; // grid, view resolution, padding
+in vec3 treeBase;         // the tree's trunk base (cell-local), tree_quads.js
 flat out vec4 vViews;
 out vec4 vWeights;
 out vec2 vUv0, vUv1, vUv2, vUv3;
 // Clip position of the quad point and of one radius toward the camera: the point a view's
 // depth d stands for is at vClip + d * vClipForward (clip space is linear in the position).
 out vec4 vClip, vClipForward;
-${QUAD_MATRIX_GLSL}
 ${TREE_VIEWS_GLSL}
 ${VIEW_TABLE_GLSL}
 vec2 viewUv(float view, vec3 q) {
@@ -58,8 +58,7 @@ void boxRectangle(vec3 base, vec3 centre, vec3 right, vec3 up, out vec2 lo, out 
     lo = max(lo, vec2(-1.0)), hi = min(hi, vec2(1.0));
 }
 void main() {
-    // Trees stand upright and unrotated: the quad's matrix only carries the tree's base.
-    vec3 base = (modelMatrix * vec4(quadMatrix()[3].xyz, 1.0)).xyz;
+    vec3 base = (modelMatrix * vec4(treeBase, 1.0)).xyz;
     vec3 centre = base + sphere.xyz;
     vec3 forward = cameraPosition - centre;
     forward = dot(forward, forward) > 1e-12 ? normalize(forward) : vec3(0.0, 0.0, 1.0);
@@ -206,13 +205,9 @@ export class TreeImpostors {
         return species.material;
     }
 
-    // Room for `capacity` billboards of species `index`: quad i is drawn at the translation of
-    // its matrix (a tree's base, cell-local), `count` of them (merged quads, impostor_quads.js).
+    // Room for `capacity` billboards of species `index` (tree_quads.js).
     makeMesh(index, capacity) {
-        const mesh = new ImpostorQuads(this.material(index), capacity);
-        const m = mesh.instanceMatrix.array;
-        for (let i = 0; i < capacity; ++i) m[16 * i] = m[16 * i + 5] = m[16 * i + 10] = m[16 * i + 15] = 1;
-        mesh.count = 0; // the cell's bounds decide visibility (ImpostorQuads are never frustum-culled)
+        const mesh = new TreeQuads(this.material(index), capacity);
         mesh.raycast = () => {}; // a click on a far tree selects the ground's cell
         return mesh;
     }
