@@ -29,6 +29,18 @@ test('the golden bytes decode to the hand-built set of the C++ test', () => {
     assert.deepEqual(set.parameters.map((c) => [...c]), [[3, Math.fround(3.2)], [2.5, 2.5]]);
 });
 
+test('without its facade frames a set keeps everything else, and counts only what it keeps', () => {
+    const bytes = goldenPayload('business.hxe').bytes;
+    const whole = decodeExtrudedSet(bytes), lean = decodeExtrudedSet(bytes, { elements: false });
+    assert.ok(whole.elements.count > 0);
+    assert.deepEqual(lean.elements, { count: whole.elements.count });
+    for (const column of ['id', 'vertexCount', 'firstElement', 'baseElevation', 'height', 'wallMaterial'])
+        assert.deepEqual([...lean.buildings[column]], [...whole.buildings[column]], column);
+    assert.deepEqual([...lean.footprints.x], [...whole.footprints.x]);
+    assert.deepEqual(lean.parameters.map((c) => [...c]), whole.parameters.map((c) => [...c]), 'the columns after the frames');
+    assert.equal(lean.byteSize, whole.byteSize - 52 * whole.elements.count);
+});
+
 for (const name of ['residential', 'business']) {
     test(`a real ${name} batch decodes as the C++ decoder reads it`, () => {
         const { bytes, expected } = goldenPayload(`${name}.hxe`);

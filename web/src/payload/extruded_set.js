@@ -35,7 +35,19 @@ class ColumnReader {
 
 const asFloats = (words) => new Float32Array(words.buffer, words.byteOffset, words.length);
 
-export function decodeExtrudedSet(payload) {
+// The facade frames' columns: origin (delta-coded), two axes, size, rule and atom.
+function readElements(r, count) {
+    const origin = [0, 1, 2].map(() => asFloats(r.deltaColumn(count)));
+    const axisX = [0, 1, 2].map(() => asFloats(r.column(count)));
+    const axisY = [0, 1, 2].map(() => asFloats(r.column(count)));
+    const size = [0, 1].map(() => asFloats(r.column(count)));
+    return { count, origin, axisX, axisY, size, rule: r.column(count), atom: r.column(count) };
+}
+
+// `elements`: whether to keep the facade frames (13 words each: most of a batch's body).
+// Without them `elements` holds only their count, and byteSize counts what is kept; the viewer
+// draws nothing from them (LOD1, which ray-casts them, is native), so it leaves them out.
+export function decodeExtrudedSet(payload, { elements = true } = {}) {
     const { bytes, view } = openPayload(payload, EXTRUDED_HEADER_BYTES, 'HXE1', 'an extruded set', EXTRUDED_SET_VERSION);
     const p = view.getUint32(28, true);
     const nb = view.getUint32(72, true), nv = view.getUint32(76, true), ne = view.getUint32(80, true);
@@ -76,12 +88,8 @@ export function decodeExtrudedSet(payload) {
             `buildings' vertex and element counts sum to ${vertex} and ${element}, the header says ${nv} and ${ne}`,
         );
     const footprintX = asFloats(r.deltaColumn(nv)), footprintY = asFloats(r.deltaColumn(nv));
-    const origin = [0, 1, 2].map(() => asFloats(r.deltaColumn(ne)));
-    const axisX = [0, 1, 2].map(() => asFloats(r.column(ne)));
-    const axisY = [0, 1, 2].map(() => asFloats(r.column(ne)));
-    const size = [0, 1].map(() => asFloats(r.column(ne)));
-    const rule = r.column(ne);
-    const atom = r.column(ne);
+    const frames = elements ? readElements(r, ne) : { count: ne };
+    if (!elements) r.at += 13 * ne;
     const parameters = [];
     for (let j = 0; j < p; ++j) parameters.push(asFloats(r.column(nb)));
     return {
@@ -95,9 +103,9 @@ export function decodeExtrudedSet(payload) {
         origin: [view.getFloat64(48, true), view.getFloat64(56, true), view.getFloat64(64, true)],
         buildings: { count: nb, id: building, vertexCount, elementCount, firstVertex, firstElement, baseElevation, height, wallMaterial },
         footprints: { x: footprintX, y: footprintY },
-        elements: { count: ne, origin, axisX, axisY, size, rule, atom },
+        elements: frames,
         parametersPerBuilding: p,
         parameters, // parameters[j][i]: parameter j (declaration order) of building i
-        byteSize: 4 * words,
+        byteSize: 4 * (elements ? words : words - 13 * ne),
     };
 }

@@ -14,6 +14,7 @@ import { getBinary } from '../api.js';
 import { decodeExtrudedSet } from '../payload/extruded_set.js';
 import { decodeTerminalSet } from '../payload/terminal_set.js';
 import { buildExtrudedGeometry } from '../render/extruded_mesh.js';
+import { geometryBytes } from '../render/geometry_bytes.js';
 import { OCCLUDER_LAYER } from '../render/occluder_depth.js';
 import { TerminalBatch } from '../render/terminal_batch.js';
 import { TreeBillboards } from '../render/tree_billboards.js';
@@ -113,7 +114,7 @@ export class Streamer {
     async load(request, signal) {
         const { bytes, version } = await getBinary(request.url, { signal });
         const start = performance.now();
-        const set = request.kind === 'terminal' ? decodeTerminalSet(bytes) : decodeExtrudedSet(bytes);
+        const set = request.kind === 'terminal' ? decodeTerminalSet(bytes) : decodeExtrudedSet(bytes, { elements: false });
         this.stats.decodeMs += performance.now() - start;
         return { kind: request.kind, set, version, grammar: request.grammar, members: request.members, wire: bytes.byteLength };
     }
@@ -149,7 +150,7 @@ export class Streamer {
                 mesh.layers.enable(OCCLUDER_LAYER); // opaque: what it hides need not be drawn
                 mesh.userData = { buildingOfTriangle, grammar: value.set.grammar, version: value.version, kind: 'extruded' };
                 value[variant] = mesh;
-                this.cache.grow(url, geometry.getAttribute('position').count * 4 * 14);
+                this.cache.grow(url, geometryBytes(geometry) + buildingOfTriangle.byteLength);
             }
             return value[variant];
         }
