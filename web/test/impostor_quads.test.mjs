@@ -53,6 +53,7 @@ test('a quad matrix reaches all four vertices of its quad, and only those', () =
 test('count draws that many quads, and needsUpdate spreads the matrices written in bulk', () => {
     const quads = new ImpostorQuads(material, 4);
     assert.equal(quads.count, 4);
+    quads.reserve(2);
     quads.instanceMatrix.array.set(matrix(10).elements, 0);
     quads.instanceMatrix.array.set(matrix(20).elements, 16);
     quads.count = 2;
@@ -72,11 +73,13 @@ test('vertices grow with the quads drawn, keep what was written, and never pass 
     const quads = new ImpostorQuads(material, 200);
     assert.equal(quads.geometry.index.count, 0); // nothing drawn yet: no vertices
     const empty = quads.bytes;
-    assert.equal(empty, 200 * 64); // the quads' matrices alone
+    assert.equal(empty, 0, 'no matrices either');
     quads.setMatrixAt(0, matrix(5));
     assert.equal(quads.geometry.index.count / 6, 64);
+    assert.equal(quads.instanceMatrix.array.length, 16 * 64, 'the matrices grow with the vertices');
     quads.setMatrixAt(100, matrix(7));
     assert.equal(quads.geometry.index.count / 6, 128);
+    assert.equal(quads.instanceMatrix.array.subarray(0, 16).join(), matrix(5).elements.join(), 'matrices kept across the growth');
     assert.equal(quads.geometry.attributes.quadX.array[0], matrix(5).elements[0]); // kept across the growth
     assert.equal(quads.geometry.attributes.quadZ.array[16 * 100 + 3], matrix(7).elements[14]);
     quads.setMatrixAt(199, matrix(9));

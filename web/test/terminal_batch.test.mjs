@@ -186,6 +186,24 @@ test('a sorted batch\'s instance buffers grow with what its lists draw', () => {
     // A batch that is never sorted holds every terminal from the start.
     const plain = new TerminalBatch(setOf(corners.slice(0, 100)), library, material, null);
     assert.equal(plain.runs[0].lod4.count, 100);
-    assert.equal(plain.gpuBytes, 100 * 64);
+    assert.equal(plain.gpuBytes, 100 * (64 + 4), 'its instances and building ids');
     assert.deepEqual(Array.from(plain.runs[0].lod4.instanceMatrix.array.subarray(16 * 99 + 12, 16 * 99 + 15)), corners[99]);
+});
+
+test('instance matrices are T·R·S of the records, which the batch does not keep', () => {
+    const corners = [[1, 2, 3], [4, 5, 6]];
+    for (const batch of [new TerminalBatch(setOf(corners), library, material, impostors), new TerminalBatch(setOf(corners), library, material, null)]) {
+        batch.updateLod([0, 0, -50], { lod3: 1000, lod2: 2000 });
+        const run = batch.runs[0];
+        assert.equal(run.lod4.count, 2);
+        for (let slot = 0; slot < 2; ++slot) {
+            const record = batch.recordOf(run.lod4, slot);
+            // X = +x scaled by w = 1, Y = +z by h = 2, Z = -y by the depth 0.1 * min(w, h).
+            const expected = [1, 0, 0, 0, 0, 0, 2, 0, 0, -0.1, 0, 0, ...corners[record], 1];
+            const m = run.lod4.instanceMatrix.array.subarray(16 * slot, 16 * slot + 16);
+            expected.forEach((x, j) => assert.ok(Math.abs(m[j] - x) < 1e-4, `record ${record}, element ${j}: ${m[j]} against ${x}`));
+        }
+        assert.deepEqual(Array.from(batch.buildings), [0, 1]);
+        assert.deepEqual(Object.keys(batch.set).sort(), ['cell', 'count', 'grammar'], 'no records kept');
+    }
 });

@@ -34,12 +34,12 @@ mat4 quadMatrix() {
 }
 `;
 
-// The per-quad matrices, written as an InstancedMesh's are; `needsUpdate` spreads the first
-// `count` of them over their vertices.
+// The per-quad matrices, written as an InstancedMesh's are (after ImpostorQuads.reserve);
+// `needsUpdate` spreads the first `count` of them over their vertices.
 class QuadMatrices {
-    constructor(mesh, capacity) {
+    constructor(mesh) {
         this.mesh = mesh;
-        this.array = new Float32Array(16 * capacity);
+        this.array = new Float32Array(0);
     }
     set needsUpdate(value) {
         if (value) this.mesh.spread(0, this.mesh.count);
@@ -63,12 +63,12 @@ function quadGeometry(quads, old) {
 }
 
 export class ImpostorQuads extends THREE.Mesh {
-    // `capacity`: the most quads it may draw. Its vertices grow with the quads it has drawn, as
-    // most terminals of a batch are never at this LOD.
+    // `capacity`: the most quads it may draw. Its matrices and vertices grow with the quads it
+    // has drawn, as most terminals of a batch are never at this LOD.
     constructor(material, capacity) {
         super(quadGeometry(0, null), material);
         this.capacity = capacity;
-        this.instanceMatrix = new QuadMatrices(this, capacity);
+        this.instanceMatrix = new QuadMatrices(this);
         this.count = capacity;
         this.frustumCulled = false;
     }
@@ -85,7 +85,22 @@ export class ImpostorQuads extends THREE.Mesh {
         return this.instanceMatrix.array.byteLength + geometryBytes(this.geometry);
     }
 
+    // Room for quads [0, quads): matrices and vertices grow together, at least doubling, up to
+    // the capacity; what they held is kept.
+    reserve(quads) {
+        const held = this.instanceMatrix.array.length / 16;
+        if (quads <= held || held >= this.capacity) return;
+        const size = Math.min(this.capacity, Math.max(quads, 2 * held, 64));
+        const grown = new Float32Array(16 * size);
+        grown.set(this.instanceMatrix.array);
+        this.instanceMatrix.array = grown;
+        const old = this.geometry;
+        this.geometry = quadGeometry(size, old);
+        old.dispose();
+    }
+
     setMatrixAt(quad, matrix) {
+        this.reserve(quad + 1);
         this.instanceMatrix.array.set(matrix.elements, 16 * quad);
         this.spread(quad, quad + 1);
     }
@@ -93,12 +108,7 @@ export class ImpostorQuads extends THREE.Mesh {
     // Copies quads [first, end) from the matrices to their four vertices each.
     spread(first, end) {
         end = Math.min(end, this.capacity);
-        const held = this.geometry.index.count / 6;
-        if (end > held) {
-            const old = this.geometry;
-            this.geometry = quadGeometry(Math.min(this.capacity, Math.max(end, 2 * held, 64)), old);
-            old.dispose();
-        }
+        this.reserve(end);
         const m = this.instanceMatrix.array;
         const columns = ['quadX', 'quadY', 'quadZ'].map((name) => this.geometry.attributes[name]);
         for (let c = 0; c < 3; ++c) {

@@ -26,26 +26,39 @@ function unwrittenList(count) {
     return new Uint32Array(count).fill(0xffffffff);
 }
 
+// Terminal i's instance matrix T·R·S into out[o .. o + 16), from its frame (corner, axes,
+// depth) and size: derived where it is written, so that a batch keeps no matrix per terminal.
+function writeMatrix(out, o, frames, sizes, i) {
+    const f = frames, k = 13 * i, w = sizes[2 * i], h = sizes[2 * i + 1], depth = f[k + 12];
+    const d = depth > 0 ? depth : FLAT_DEPTH * Math.max(Math.min(w, h), 1e-3);
+    out[o] = f[k + 3] * w; out[o + 1] = f[k + 4] * w; out[o + 2] = f[k + 5] * w; out[o + 3] = 0;
+    out[o + 4] = f[k + 6] * h; out[o + 5] = f[k + 7] * h; out[o + 6] = f[k + 8] * h; out[o + 7] = 0;
+    out[o + 8] = f[k + 9] * d; out[o + 9] = f[k + 10] * d; out[o + 10] = f[k + 11] * d; out[o + 11] = 0;
+    out[o + 12] = f[k]; out[o + 13] = f[k + 1]; out[o + 14] = f[k + 2]; out[o + 15] = 1;
+}
+
 // An unsorted batch's LOD4 list: every terminal of the run, once.
-function fill(list, matrices) {
-    list.reserve(matrices.length / 16);
-    list.instanceMatrix.array.set(matrices);
+function fill(list, frames, sizes, first, count) {
+    list.reserve(count);
+    for (let i = 0; i < count; ++i) writeMatrix(list.instanceMatrix.array, 16 * i, frames, sizes, first + i);
     list.instanceMatrix.needsUpdate = true;
-    list.count = matrices.length / 16;
+    list.count = count;
 }
 
 export class TerminalBatch {
     // `impostors`: an ImpostorSet (impostors.js) or null. `treeCut`: a tree batch, whose
     // terminals of trees shown as billboards updateLod leaves out. `freeStanding`: a tree
     // batch, whose parts no wall hides from behind (they are not backface culled).
+    // The set's records are read here and not kept: `set` becomes its cell, grammar and count,
+    // `buildings` each terminal's building id.
     constructor(set, library, material, impostors, { treeCut = false, freeStanding = treeCut } = {}) {
-        this.set = set;
+        this.set = { cell: set.cell, grammar: set.grammar, count: set.count };
         this.group = new THREE.Group();
         this.group.name = `terminals ${set.cell.q},${set.cell.r}/${set.grammar}`;
         const n = set.count;
-        this.matrices = new Float32Array(16 * n);
         this.frames = new Float32Array(13 * n); // corner xyz, axes (9), depth: for the LOD decision
         this.sizes = new Float32Array(2 * n);
+        this.buildings = new Uint32Array(n);
         const q = [0, 0, 0, 0], axes = new Float64Array(9);
         const w = set.records, p = set.positions;
         for (let i = 0; i < n; ++i) {
@@ -57,18 +70,13 @@ export class TerminalBatch {
             quaternionAxes(q, axes);
             const width = halfToFloat(w[b + 6] & 0xffff), height = halfToFloat(w[b + 6] >>> 16);
             const depth = halfToFloat(w[b + 7] >>> 16) * Math.min(width, height);
-            const d = depth > 0 ? depth : FLAT_DEPTH * Math.max(Math.min(width, height), 1e-3);
-            const m = this.matrices, o = 16 * i;
-            m[o] = axes[0] * width; m[o + 1] = axes[1] * width; m[o + 2] = axes[2] * width;
-            m[o + 4] = axes[3] * height; m[o + 5] = axes[4] * height; m[o + 6] = axes[5] * height;
-            m[o + 8] = axes[6] * d; m[o + 9] = axes[7] * d; m[o + 10] = axes[8] * d;
-            m[o + 12] = p[b]; m[o + 13] = p[b + 1]; m[o + 14] = p[b + 2]; m[o + 15] = 1;
             const f = this.frames, k = 13 * i;
             f[k] = p[b]; f[k + 1] = p[b + 1]; f[k + 2] = p[b + 2];
             for (let j = 0; j < 9; ++j) f[k + 3 + j] = axes[j];
             f[k + 12] = depth;
             this.sizes[2 * i] = width;
             this.sizes[2 * i + 1] = height;
+            this.buildings[i] = w[b + 3];
         }
         this.runs = [];
         let first = 0;
@@ -86,18 +94,18 @@ export class TerminalBatch {
         this.sorted = treeCut || this.runs.some((r) => r.lod3 || r.coarse);
         this.onWall = !freeStanding;
         this.lastCut = -1;
-        // The CPU's matrices, frames and sizes, kept to sort from, and the lists' records; the
+        // The building ids, the frames and sizes kept to sort from, and the lists' records; the
         // instance buffers are counted as they grow (gpuBytes).
-        this.baseBytes = this.sorted ? this.matrices.byteLength + this.frames.byteLength + this.sizes.byteLength : 0;
+        this.baseBytes = this.buildings.byteLength + (this.sorted ? this.frames.byteLength + this.sizes.byteLength : 0);
         for (const run of this.runs) {
             if (this.sorted) run.records ??= unwrittenList(run.count);
-            else fill(run.lod4, this.matrices.subarray(16 * run.first, 16 * (run.first + run.count)));
+            else fill(run.lod4, this.frames, this.sizes, run.first, run.count);
             if (run.coarse) this.baseBytes += run.reach.byteLength;
             for (const list of [run.records, run.lod3Records, run.lod2Records, run.coarse?.userData.records]) this.baseBytes += list?.byteLength ?? 0;
         }
         // Without impostors or a tree cut the lists never change: the instance buffers hold all
         // there is. Sorted, each list grows with what it draws (updateLod), from nothing.
-        if (!this.sorted) this.matrices = this.frames = this.sizes = null;
+        if (!this.sorted) this.frames = this.sizes = null;
     }
 
     makeRun(shape, first, count, library, material, impostors) {
@@ -173,7 +181,7 @@ export class TerminalBatch {
             const filled = { 4: 0, 3: 0, 2: 0, [COARSE]: 0 };
             const changed = { 4: false, 3: false, 2: false, [COARSE]: false };
             for (let i = run.first; i < run.first + run.count; ++i) {
-                if (cut && cut.isBillboard(this.set.records[8 * i + 3])) continue;
+                if (cut && cut.isBillboard(this.buildings[i])) continue;
                 const f = this.frames, k = 13 * i;
                 corner[0] = f[k] - camera[0];
                 corner[1] = f[k + 1] - camera[1];
@@ -190,8 +198,8 @@ export class TerminalBatch {
                 const slot = filled[lod]++;
                 if (records[lod][slot] !== i) {
                     records[lod][slot] = i;
-                    lists[lod].reserve?.(slot + 1); // impostor quads grow as their matrices are spread
-                    lists[lod].instanceMatrix.array.set(this.matrices.subarray(16 * i, 16 * i + 16), 16 * slot);
+                    lists[lod].reserve(slot + 1); // instance buffers and impostor quads grow as they fill
+                    writeMatrix(lists[lod].instanceMatrix.array, 16 * slot, this.frames, this.sizes, i);
                     changed[lod] = true;
                 }
                 ++counts[lod === COARSE ? 4 : lod];
@@ -207,8 +215,8 @@ export class TerminalBatch {
         this.counts = counts;
     }
 
-    // Bytes for the GPU: the matrices, and the instance buffers and impostor quads, which grow
-    // with the most instances a list has drawn.
+    // Bytes for the GPU: what the batch keeps, and the instance buffers and impostor quads,
+    // which grow with the most instances a list has drawn.
     get gpuBytes() {
         let bytes = this.baseBytes;
         for (const run of this.runs) for (const list of [run.lod4, run.coarse, run.lod3, run.lod2]) bytes += list?.bytes ?? 0;

@@ -159,7 +159,10 @@ export class Streamer {
             const trees = this.grammar(value.set.grammar)?.kind === 'tree';
             const treeCut = this.trees.enabled && trees;
             value.terminals = new TerminalBatch(value.set, library, this.materials.terminal, this.impostors.enabled ? this.impostors : null, { treeCut, freeStanding: trees });
-            this.cache.grow(url, value.terminals.gpuBytes);
+            // The batch keeps what it sorts and draws from; the decoded records go.
+            const decoded = value.set.byteSize;
+            value.set = value.terminals.set;
+            this.cache.grow(url, value.terminals.gpuBytes - decoded);
         }
         return value.terminals.group;
     }

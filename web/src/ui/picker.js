@@ -45,7 +45,7 @@ export class Picker {
                 const grammar = batch.set.grammar;
                 const cell = [batch.set.cell.q, batch.set.cell.r];
                 if (this.isTree(grammar)) return { grammar, cell, point };
-                return { building: batch.set.records[8 * record + 3], grammar, cell, point };
+                return { building: batch.buildings[record], grammar, cell, point };
             }
             if (object.userData.buildingOfTriangle && hit.faceIndex !== undefined) {
                 const cellData = object.parent?.userData.cell;
