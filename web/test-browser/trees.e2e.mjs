@@ -5,8 +5,9 @@
 // the terminals' than no trees at all, and draw the same over their species' boxes as over their
 // spheres' whole squares; drawn as terminals this far out, the trees' parts use
 // their coarse meshes, with fewer triangles and an image close to the full meshes' (?coarse=0);
-// by distance (the default) the cut must split the park's batches from nearer and make every
-// tree a billboard from farther; and after the trees are edited, the service bakes species for
+// by distance (the default) the cut must split the park's batches from nearer (and with no
+// budget for terminal sets draw the near trees as billboards too) and make every tree a
+// billboard from farther; and after the trees are edited, the service bakes species for
 // their new values and the far trees are billboards of those, changing the image; and at eye
 // level in a small viewport the ground is drawn. Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
@@ -74,7 +75,7 @@ test('far trees are billboards that stand for their trees, and edited trees get 
             const widths = [];
             window.hexlod.world.scene.traverse((o) => {
                 const u = o.material?.uniforms;
-                if (o.isMesh && o.count > 0 && u?.boxLo) widths.push((u.boxHi.value.x - u.boxLo.value.x) / (2 * u.sphere.value.w));
+                if (o.isMesh && o.shown > 0 && u?.boxLo) widths.push((u.boxHi.value.x - u.boxLo.value.x) / (2 * u.sphere.value.w));
             });
             return widths;
         });
@@ -122,6 +123,11 @@ test('far trees are billboards that stand for their trees, and edited trees get 
         const mixed = (await view('auto', '0,-200,4,90,0')).state.streamer.trees;
         assert.ok(mixed.billboards > 0 && mixed.terminals > 0, `trees ${JSON.stringify(mixed)}`);
         assert.equal(mixed.billboards + mixed.terminals, 40);
+        // With no room for terminal sets (?budget=0) the near trees' sets are held back, and
+        // those trees are billboards too, not missing.
+        const held = (await view('auto', '0,-200,4,90,0', '&budget=0')).state;
+        assert.deepEqual([held.streamer.trees.billboards, held.streamer.trees.terminals], [40, 0], `trees ${JSON.stringify(held.streamer.trees)}`);
+        assert.ok(held.streamer.cells.held > 0, `cells ${JSON.stringify(held.streamer.cells)}`);
 
         // By distance, trees beyond the terminal distance are billboards.
         const auto = await view('auto', far);
