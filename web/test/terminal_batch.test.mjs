@@ -177,7 +177,9 @@ test('a sorted batch\'s instance buffers grow with what its lists draw', () => {
     batch.updateLod([0, 0, 0], { lod3: 1000, lod2: 2000 });
     assert.equal(run.lod4.count, 300);
     assert.equal(run.lod4.bytes, 300 * 64, 'no more than the run holds');
-    assert.equal(batch.gpuBytes - before, (300 - 64) * 64, 'the growth is counted');
+    assert.equal(batch.gpuBytes - before, (300 - 64) * (64 + 4), 'the growth of the instances and their records is counted');
+    assert.equal(run.records.length, 300, 'the LOD4 records grew with the list');
+    assert.ok(run.lod2Records.length < 300 && run.lod3Records.length + run.lod2Records.length >= 290, 'the impostor lists hold records for what they drew');
     for (const slot of [0, 9, 10, 299]) {
         const record = run.records[slot];
         assert.deepEqual(Array.from(run.lod4.instanceMatrix.array.subarray(16 * slot + 12, 16 * slot + 15)), corners[record],

@@ -21,9 +21,13 @@ import { GrowingInstances } from './growing_instances.js';
 
 const FLAT_DEPTH = 1e-3;
 
-// The records of a list not sorted yet: none is a record, so every slot is written.
-function unwrittenList(count) {
-    return new Uint32Array(count).fill(0xffffffff);
+// The record held in each slot of a list, grown as the list fills (at least doubling, up to
+// the run's `count`): a new slot holds none, so it is written.
+function recordsWith(records, slot, count) {
+    if (slot < records.length) return records;
+    const grown = new Uint32Array(Math.min(count, Math.max(slot + 1, 2 * records.length, 64))).fill(0xffffffff);
+    grown.set(records);
+    return grown;
 }
 
 // Terminal i's instance matrix T·R·S into out[o .. o + 16), from its frame (corner, axes,
@@ -94,14 +98,13 @@ export class TerminalBatch {
         this.sorted = treeCut || this.runs.some((r) => r.lod3 || r.coarse);
         this.onWall = !freeStanding;
         this.lastCut = -1;
-        // The building ids, the frames and sizes kept to sort from, and the lists' records; the
+        // The building ids, and the frames and sizes kept to sort from; the lists' records and
         // instance buffers are counted as they grow (gpuBytes).
         this.baseBytes = this.buildings.byteLength + (this.sorted ? this.frames.byteLength + this.sizes.byteLength : 0);
         for (const run of this.runs) {
-            if (this.sorted) run.records ??= unwrittenList(run.count);
+            if (this.sorted) run.records ??= new Uint32Array(0);
             else fill(run.lod4, this.frames, this.sizes, run.first, run.count);
             if (run.coarse) this.baseBytes += run.reach.byteLength;
-            for (const list of [run.records, run.lod3Records, run.lod2Records, run.coarse?.userData.records]) this.baseBytes += list?.byteLength ?? 0;
         }
         // Without impostors or a tree cut the lists never change: the instance buffers hold all
         // there is. Sorted, each list grows with what it draws (updateLod), from nothing.
@@ -123,9 +126,9 @@ export class TerminalBatch {
             run.lod2 = impostors.makeMesh(atlas, 2, count);
             run.lod3.count = run.lod2.count = 0;
             for (const mesh of [run.lod3, run.lod2]) this.group.add(mesh);
-            run.records = unwrittenList(count); // record of each LOD4 instance
-            run.lod3Records = unwrittenList(count);
-            run.lod2Records = unwrittenList(count);
+            run.records = new Uint32Array(0); // record of each LOD4 instance
+            run.lod3Records = new Uint32Array(0);
+            run.lod2Records = new Uint32Array(0);
         }
         if (info?.coarse) {
             // As in the native pass, a LOD4 terminal small enough on screen draws its shape's
@@ -133,7 +136,7 @@ export class TerminalBatch {
             run.coarse = new GrowingInstances(info.coarse.geometry, material, count);
             run.coarse.frustumCulled = false;
             run.coarse.userData.batch = this;
-            run.coarse.userData.records = unwrittenList(count); // record of each coarse instance
+            run.coarse.userData.records = new Uint32Array(0); // record of each coarse instance
             this.group.add(run.coarse);
             // Each terminal's coarseMeshReach per metre of deviation scale: its scope is fixed.
             run.reach = new Float32Array(count);
@@ -196,6 +199,7 @@ export class TerminalBatch {
                 // A list slot that holds the same record as after the last sort holds its matrix
                 // already, on the GPU too: only lists with a changed slot are uploaded again.
                 const slot = filled[lod]++;
+                records[lod] = recordsWith(records[lod], slot, run.count);
                 if (records[lod][slot] !== i) {
                     records[lod][slot] = i;
                     lists[lod].reserve(slot + 1); // instance buffers and impostor quads grow as they fill
@@ -210,16 +214,21 @@ export class TerminalBatch {
                 lists[lod].count = filled[lod];
                 if (changed[lod]) lists[lod].instanceMatrix.needsUpdate = true;
             }
+            [run.records, run.lod3Records, run.lod2Records] = [records[4], records[3], records[2]];
+            if (run.coarse) run.coarse.userData.records = records[COARSE];
             run.lod4.userData.records = run.records ?? null;
         }
         this.counts = counts;
     }
 
-    // Bytes for the GPU: what the batch keeps, and the instance buffers and impostor quads,
-    // which grow with the most instances a list has drawn.
+    // Bytes for the GPU: what the batch keeps, and the instance buffers, impostor quads and
+    // lists' records, which grow with the most instances a list has drawn.
     get gpuBytes() {
         let bytes = this.baseBytes;
-        for (const run of this.runs) for (const list of [run.lod4, run.coarse, run.lod3, run.lod2]) bytes += list?.bytes ?? 0;
+        for (const run of this.runs) {
+            for (const list of [run.lod4, run.coarse, run.lod3, run.lod2]) bytes += list?.bytes ?? 0;
+            for (const records of [run.records, run.lod3Records, run.lod2Records, run.coarse?.userData.records]) bytes += records?.byteLength ?? 0;
+        }
         return bytes;
     }
 
