@@ -17,7 +17,7 @@ export const DRAWN_PRIORITY_FACTOR = 1.25;
 // a grammar with none. An unmeasured set thus costs nothing in the estimate: the fetch queue
 // takes the admitted sets highest priority first, a few at a time, and the first one measured
 // prices the rest of its grammar's. Members differ too much to price one grammar's by
-// another's (at the thesis street a house took 43 KiB, a tower 0.5 MiB, a tree far less), and
+// another's (at the thesis street a house took 37 KB, a tower 0.45 MB, a tree far less), and
 // a guess that is too high holds sets back for good, since nothing held is ever measured.
 export function bytesPerMember(measured) {
     const sums = new Map();
