@@ -75,7 +75,7 @@ try {
         out.without_impostors_ms = median();
         impostors.forEach((o) => (o.visible = true));
         const billboards = impostors.filter((o) => !o.material.uniforms.nominal); // terminals' have a nominal size
-        out.tree_billboards = billboards.reduce((sum, o) => sum + (o.shown ?? o.count), 0); // TreeQuads, ImpostorQuads
+        out.tree_billboards = billboards.reduce((sum, o) => sum + o.count, 0);
         billboards.forEach((o) => (o.visible = false));
         out.without_tree_billboards_ms = median();
         billboards.forEach((o) => (o.visible = true));

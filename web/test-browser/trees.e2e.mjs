@@ -75,7 +75,7 @@ test('far trees are billboards that stand for their trees, and edited trees get 
             const widths = [];
             window.hexlod.world.scene.traverse((o) => {
                 const u = o.material?.uniforms;
-                if (o.isMesh && o.shown > 0 && u?.boxLo) widths.push((u.boxHi.value.x - u.boxLo.value.x) / (2 * u.sphere.value.w));
+                if (o.isMesh && o.count > 0 && u?.boxLo) widths.push((u.boxHi.value.x - u.boxLo.value.x) / (2 * u.sphere.value.w));
             });
             return widths;
         });

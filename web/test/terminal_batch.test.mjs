@@ -39,7 +39,7 @@ const turned = (d) => [Math.sin(degrees(d)), Math.cos(degrees(d)), 0];
 // The records in the LOD4 list, in order.
 function lod4Records(batch) {
     const run = batch.runs[0];
-    return Array.from(run.records.subarray(0, run.lod4.count));
+    return Array.from(run.slots[4].subarray(0, run.lod4.count));
 }
 
 test('terminals behind their wall or outside the view are left out of every list', () => {
@@ -154,7 +154,7 @@ test('a sort that leaves a list as it was uploads nothing of it again', () => {
     const [lod4, lod3, lod2] = versions();
     assert.deepEqual([lod4, lod3], first.slice(0, 2));
     assert.ok(lod2 > first[2], 'the changed LOD2 list is uploaded');
-    assert.deepEqual(Array.from(run.lod2Records.subarray(0, run.lod2.count)), [3]);
+    assert.deepEqual(Array.from(run.slots[2].subarray(0, run.lod2.count)), [3]);
     // Its matrix is record 3's: the corner at (0, 260, 0).
     assert.deepEqual(Array.from(run.lod2.instanceMatrix.array.subarray(12, 15)), [0, 260, 0]);
 });
@@ -178,10 +178,10 @@ test('a sorted batch\'s instance buffers grow with what its lists draw', () => {
     assert.equal(run.lod4.count, 300);
     assert.equal(run.lod4.bytes, 300 * 64, 'no more than the run holds');
     assert.equal(batch.gpuBytes - before, (300 - 64) * (64 + 4), 'the growth of the instances and their records is counted');
-    assert.equal(run.records.length, 300, 'the LOD4 records grew with the list');
-    assert.ok(run.lod2Records.length < 300 && run.lod3Records.length + run.lod2Records.length >= 290, 'the impostor lists hold records for what they drew');
+    assert.equal(run.slots[4].length, 300, 'the LOD4 records grew with the list');
+    assert.ok(run.slots[2].length < 300 && run.slots[3].length + run.slots[2].length >= 290, 'the impostor lists hold records for what they drew');
     for (const slot of [0, 9, 10, 299]) {
-        const record = run.records[slot];
+        const record = run.slots[4][slot];
         assert.deepEqual(Array.from(run.lod4.instanceMatrix.array.subarray(16 * slot + 12, 16 * slot + 15)), corners[record],
             `slot ${slot} holds record ${record}'s matrix`);
     }

@@ -11,7 +11,7 @@ const material = new THREE.MeshBasicMaterial();
 
 test('a base reaches all four vertices of its quad, and only those', () => {
     const quads = new TreeQuads(material, 3);
-    assert.equal(quads.shown, 0, 'nothing drawn before show');
+    assert.equal(quads.count, 0, 'nothing drawn before show');
     quads.place(1, Float32Array.of(9, 9, 9, 4, 5, 6), 3);
     const bases = quads.geometry.attributes.treeBase;
     assert.deepEqual(Array.from(bases.array.subarray(12, 24)), [4, 5, 6, 4, 5, 6, 4, 5, 6, 4, 5, 6]);
@@ -19,7 +19,7 @@ test('a base reaches all four vertices of its quad, and only those', () => {
     assert.ok(bases.array.subarray(24).every((x) => x === 0));
     const version = bases.version;
     quads.show(2);
-    assert.equal(quads.shown, 2);
+    assert.equal(quads.count, 2);
     assert.equal(quads.geometry.drawRange.count, 12);
     assert.ok(bases.version > version, 'show uploads the bases');
 });
@@ -27,9 +27,9 @@ test('a base reaches all four vertices of its quad, and only those', () => {
 test('show stays within the capacity, and the bytes are the arrays', () => {
     const quads = new TreeQuads(material, 4);
     quads.show(9);
-    assert.equal(quads.shown, 4);
+    assert.equal(quads.count, 4);
     quads.show(-1);
-    assert.equal(quads.shown, 0);
+    assert.equal(quads.count, 0);
     assert.equal(quads.bytes, 4 * (8 + 48 + 12)); // corners, bases, 16-bit index
     assert.equal(new TreeQuads(material, 0).bytes, 0);
 });

@@ -21,10 +21,9 @@ import { GrowingInstances } from './growing_instances.js';
 
 const FLAT_DEPTH = 1e-3;
 
-// The record held in each slot of a list, grown as the list fills (at least doubling, up to
-// the run's `count`): a new slot holds none, so it is written.
-function recordsWith(records, slot, count) {
-    if (slot < records.length) return records;
+// The records of a list's slots grown to hold `slot` (at least doubling, up to the run's
+// `count`): a new slot holds none, so it is written.
+function grownRecords(records, slot, count) {
     const grown = new Uint32Array(Math.min(count, Math.max(slot + 1, 2 * records.length, 64))).fill(0xffffffff);
     grown.set(records);
     return grown;
@@ -102,8 +101,7 @@ export class TerminalBatch {
         // instance buffers are counted as they grow (gpuBytes).
         this.baseBytes = this.buildings.byteLength + (this.sorted ? this.frames.byteLength + this.sizes.byteLength : 0);
         for (const run of this.runs) {
-            if (this.sorted) run.records ??= new Uint32Array(0);
-            else fill(run.lod4, this.frames, this.sizes, run.first, run.count);
+            if (!this.sorted) fill(run.lod4, this.frames, this.sizes, run.first, run.count);
             if (run.coarse) this.baseBytes += run.reach.byteLength;
         }
         // Without impostors or a tree cut the lists never change: the instance buffers hold all
@@ -119,16 +117,16 @@ export class TerminalBatch {
         lod4.userData.records = null; // instance i is record first + i until re-sorted
         lod4.userData.first = first;
         this.group.add(lod4);
-        const run = { shape, first, count, lod4, lod3: null, lod2: null, coarse: null };
+        // `slots`: per list, the record each of its slots holds (sorted batches).
+        const run = { shape, first, count, lod4, lod3: null, lod2: null, coarse: null, slots: { 4: new Uint32Array(0) } };
         const atlas = impostors?.atlasOf(library.grammar.index, shape);
         if (atlas) {
             run.lod3 = impostors.makeMesh(atlas, 3, count);
             run.lod2 = impostors.makeMesh(atlas, 2, count);
             run.lod3.count = run.lod2.count = 0;
             for (const mesh of [run.lod3, run.lod2]) this.group.add(mesh);
-            run.records = new Uint32Array(0); // record of each LOD4 instance
-            run.lod3Records = new Uint32Array(0);
-            run.lod2Records = new Uint32Array(0);
+            run.slots[3] = new Uint32Array(0);
+            run.slots[2] = new Uint32Array(0);
         }
         if (info?.coarse) {
             // As in the native pass, a LOD4 terminal small enough on screen draws its shape's
@@ -136,7 +134,7 @@ export class TerminalBatch {
             run.coarse = new GrowingInstances(info.coarse.geometry, material, count);
             run.coarse.frustumCulled = false;
             run.coarse.userData.batch = this;
-            run.coarse.userData.records = new Uint32Array(0); // record of each coarse instance
+            run.slots[COARSE] = run.coarse.userData.records = new Uint32Array(0); // record of each coarse instance
             this.group.add(run.coarse);
             // Each terminal's coarseMeshReach per metre of deviation scale: its scope is fixed.
             run.reach = new Float32Array(count);
@@ -180,7 +178,7 @@ export class TerminalBatch {
         const corner = [0, 0, 0], axes = new Float64Array(9);
         for (const run of this.runs) {
             const lists = { 4: run.lod4, 3: run.lod3, 2: run.lod2, [COARSE]: run.coarse };
-            const records = { 4: run.records, 3: run.lod3Records, 2: run.lod2Records, [COARSE]: run.coarse?.userData.records };
+            const records = run.slots;
             const filled = { 4: 0, 3: 0, 2: 0, [COARSE]: 0 };
             const changed = { 4: false, 3: false, 2: false, [COARSE]: false };
             for (let i = run.first; i < run.first + run.count; ++i) {
@@ -199,7 +197,7 @@ export class TerminalBatch {
                 // A list slot that holds the same record as after the last sort holds its matrix
                 // already, on the GPU too: only lists with a changed slot are uploaded again.
                 const slot = filled[lod]++;
-                records[lod] = recordsWith(records[lod], slot, run.count);
+                if (slot >= records[lod].length) records[lod] = grownRecords(records[lod], slot, run.count);
                 if (records[lod][slot] !== i) {
                     records[lod][slot] = i;
                     lists[lod].reserve(slot + 1); // instance buffers and impostor quads grow as they fill
@@ -214,9 +212,8 @@ export class TerminalBatch {
                 lists[lod].count = filled[lod];
                 if (changed[lod]) lists[lod].instanceMatrix.needsUpdate = true;
             }
-            [run.records, run.lod3Records, run.lod2Records] = [records[4], records[3], records[2]];
+            run.lod4.userData.records = records[4];
             if (run.coarse) run.coarse.userData.records = records[COARSE];
-            run.lod4.userData.records = run.records ?? null;
         }
         this.counts = counts;
     }
@@ -227,7 +224,7 @@ export class TerminalBatch {
         let bytes = this.baseBytes;
         for (const run of this.runs) {
             for (const list of [run.lod4, run.coarse, run.lod3, run.lod2]) bytes += list?.bytes ?? 0;
-            for (const records of [run.records, run.lod3Records, run.lod2Records, run.coarse?.userData.records]) bytes += records?.byteLength ?? 0;
+            for (const records of Object.values(run.slots)) bytes += records.byteLength;
         }
         return bytes;
     }

@@ -38,7 +38,7 @@ export class TreeBillboards {
             else perSpecies.set(s, (perSpecies.get(s) ?? 0) + 1);
         }
         this.treeIds = buildings.id;
-        this.meshes = new Map(); // species index -> TreeQuads, `shown` the billboards drawn
+        this.meshes = new Map(); // species index -> TreeQuads, `count` the billboards drawn
         this.spheres = new Map(); // species index -> its bounding sphere (tree space): x, y, z, radius
         for (const [s, capacity] of perSpecies) {
             const mesh = species.makeMesh(s, capacity);
@@ -106,7 +106,7 @@ export class TreeBillboards {
         this.count = 0;
         for (const [s, mesh] of this.meshes) {
             mesh.show(filled.get(s) ?? 0);
-            this.count += mesh.shown;
+            this.count += mesh.count;
         }
         if (changed) ++this.version;
     }

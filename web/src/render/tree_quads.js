@@ -34,13 +34,17 @@ export class TreeQuads extends THREE.Mesh {
 
     // Draws the first `count` billboards placed, and uploads their bases.
     show(count) {
-        this.geometry.setDrawRange(0, 6 * Math.max(0, Math.min(count, this.capacity)));
+        this.count = count;
         this.geometry.attributes.treeBase.needsUpdate = true;
     }
 
-    // The billboards drawn (not `count`, which THREE.Mesh keeps for instancing).
-    get shown() {
+    // The billboards drawn, as ImpostorQuads' `count` (THREE.Mesh sets it to 1 before this
+    // constructor has a capacity, which then sets 0).
+    get count() {
         return this.geometry.drawRange.count / 6;
+    }
+    set count(quads) {
+        this.geometry.setDrawRange(0, 6 * Math.max(0, Math.min(quads, this.capacity)));
     }
 
     // Bytes held for the GPU.
