@@ -31,8 +31,18 @@ test('corners take two bytes a vertex, and the index 16 bits while the vertices 
     const large = quadCorners(16385);
     assert.equal(large.index.array.BYTES_PER_ELEMENT, 4);
     assert.equal(large.index.array[6 * 16384 + 1], 4 * 16384 + 2, 'the first quad past 16 bits');
-    assert.equal(large.position.itemSize, 2);
-    assert.equal(large.position.array.byteLength, 8 * 16385);
+    assert.equal(large.attributes.position.itemSize, 2);
+    assert.equal(large.attributes.position.array.byteLength, 8 * 16385);
+});
+
+test('quads carry a bounding sphere of their own: three.js would compute NaN from two-component corners', () => {
+    const quads = new ImpostorQuads(material, 8);
+    quads.reserve(5); // a grown geometry keeps it too
+    for (const geometry of [quadCorners(4), quads.geometry]) {
+        assert.ok(geometry.boundingSphere, 'set, so three.js never computes it');
+        assert.deepEqual(geometry.boundingSphere.center.toArray(), [0, 0, 0]);
+        assert.equal(geometry.boundingSphere.radius, Infinity);
+    }
 });
 
 test('a quad matrix reaches all four vertices of its quad, and only those', () => {

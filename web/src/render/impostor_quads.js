@@ -13,9 +13,11 @@ import { geometryBytes } from './geometry_bytes.js';
 const CORNERS = [-1, 1, 1, 1, -1, -1, 1, -1];
 const TRIANGLES = [0, 2, 1, 2, 3, 1];
 
-// The corners of `quads` quads, four vertices each, as a `position` attribute of two bytes a
-// vertex (the shaders read position.xy; z is 0) and their triangles' index, in 16 bits while
-// the vertices allow.
+// A geometry of `quads` quads' corners, four vertices each, as a `position` attribute of two
+// bytes a vertex (the shaders read position.xy; z is 0) and their triangles' index, in 16 bits
+// while the vertices allow. Where a quad stands is in attributes of its user's, so three.js
+// cannot bound it from `position` (two components: the sphere it would compute is NaN, with an
+// error logged, when it sorts the mesh): its bounding sphere is the cell's origin, unbounded.
 export function quadCorners(quads) {
     const positions = new Int8Array(8 * quads);
     const index = new (4 * quads <= 65536 ? Uint16Array : Uint32Array)(6 * quads);
@@ -23,7 +25,11 @@ export function quadCorners(quads) {
         positions.set(CORNERS, 8 * q);
         for (let k = 0; k < 6; ++k) index[6 * q + k] = 4 * q + TRIANGLES[k];
     }
-    return { position: new THREE.BufferAttribute(positions, 2), index: new THREE.BufferAttribute(index, 1) };
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(positions, 2));
+    geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    geometry.boundingSphere = new THREE.Sphere(new THREE.Vector3(), Infinity);
+    return geometry;
 }
 
 // GLSL: the quad's matrix, as InstancedMesh's `instanceMatrix` would give it.
@@ -47,10 +53,7 @@ class QuadMatrices {
 }
 
 function quadGeometry(quads, old) {
-    const geometry = new THREE.BufferGeometry();
-    const { position, index } = quadCorners(quads);
-    geometry.setAttribute('position', position);
-    geometry.setIndex(index);
+    const geometry = quadCorners(quads);
     for (const name of ['quadX', 'quadY', 'quadZ']) {
         const array = new Float32Array(16 * quads);
         if (old) array.set(old.attributes[name].array);

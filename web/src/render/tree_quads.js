@@ -13,10 +13,7 @@ import { quadCorners } from './impostor_quads.js';
 export class TreeQuads extends THREE.Mesh {
     // `capacity`: the most trees it may draw; none is drawn until `show`.
     constructor(material, capacity) {
-        const geometry = new THREE.BufferGeometry();
-        const { position, index } = quadCorners(capacity);
-        geometry.setAttribute('position', position);
-        geometry.setIndex(index);
+        const geometry = quadCorners(capacity);
         const bases = new THREE.BufferAttribute(new Float32Array(12 * capacity), 3);
         bases.setUsage(THREE.DynamicDrawUsage);
         geometry.setAttribute('treeBase', bases);
