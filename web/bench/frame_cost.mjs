@@ -56,6 +56,7 @@ try {
         out.terminals = state.streamer.terminals; // per LOD, and LOD4 drawn with coarse meshes
         out.cache = state.cache; // payloads and what they hold for the GPU, in bytes
         out.cells = state.streamer.cells; // in view, per LOD, and those the budget held back
+        out.point_batches = state.streamer.pointBatches; // extruded batches whose buildings are points
         out.terminal_budget = state.terminalBudget;
         // The cache's bytes by payload kind and grammar kind ("terminal building", "extruded tree", ...).
         // And per building grammar, the bytes its terminal sets take per building.

@@ -5,6 +5,7 @@
 import { getJson, traffic } from './api.js';
 import { CameraControls } from './camera/controls.js';
 import { EditClient } from './edits/edit_client.js';
+import { makeBuildingPointMaterial } from './render/building_points.js';
 import { makeExtrudedMaterial } from './render/extruded_mesh.js';
 import { ImpostorSet } from './render/impostors.js';
 import { isSoftwareRenderer, OccluderDepth } from './render/occluder_depth.js';
@@ -63,7 +64,9 @@ async function start() {
     if (scene.counts?.trees > 0 && !capabilities.tree_billboards)
         messages.add('tree impostors are not served by this service: trees beyond the terminal distance are not drawn', 'notice');
     const terminal = new THREE.MeshLambertMaterial({ vertexColors: true });
-    const materials = { extruded: makeExtrudedMaterial(), backing: new THREE.MeshLambertMaterial({ vertexColors: true }), terminal };
+    // ?points=0 keeps far buildings' shells instead of drawing them as points, for comparisons.
+    const points = params.get('points') !== '0' ? makeBuildingPointMaterial(world.lighting) : null;
+    const materials = { extruded: makeExtrudedMaterial(), backing: new THREE.MeshLambertMaterial({ vertexColors: true }), terminal, points };
     // ?budget=MiB bounds the content cache, and with it the terminal sets a view may hold. The
     // default holds the thesis city's street view whole (0.93 GB: docs/BENCHMARKS.md, "The
     // viewer's memory within its budget").

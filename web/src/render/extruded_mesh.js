@@ -14,7 +14,37 @@ const WALL_COLOURS = [
     [150, 124, 96], [120, 60, 40], [170, 160, 140], [90, 96, 104],
     [140, 110, 80], [110, 100, 90], [160, 140, 120], [70, 70, 75],
 ].map((c) => c.map((v) => (v / 255) ** 2.2)); // sRGB palette to linear
-const ROOF_COLOUR = [60, 58, 56].map((v) => (v / 255) ** 2.2);
+export const EXTRUDED_ROOF_COLOUR = [60, 58, 56].map((v) => (v / 255) ** 2.2);
+
+// The window pattern (makeExtrudedMaterial): the glass, how far a window darkens the wall
+// toward it, and where a window lies in its bay, across and up (fractions of the bay).
+const WINDOW_GLASS = [0.06, 0.08, 0.11];
+const WINDOW_MIX = 0.85;
+const WINDOW_ACROSS = [0.22, 0.78];
+const WINDOW_UP = [0.3, 0.82];
+const WINDOW_SHARE = (WINDOW_ACROSS[1] - WINDOW_ACROSS[0]) * (WINDOW_UP[1] - WINDOW_UP[0]);
+
+// The linear wall colour of wall material `material`.
+export function wallColourOf(material) {
+    return WALL_COLOURS[material % WALL_COLOURS.length];
+}
+
+// A wall's colour where its window bays are under a pixel: the pattern's mean.
+export function wallTextureMean(wall) {
+    return wall.map((v, k) => v + (WINDOW_GLASS[k] - v) * WINDOW_MIX * WINDOW_SHARE);
+}
+
+// Building `i`'s footprint ring as [x, y] pairs, inset by `inset` metres, or null where it
+// has no base volume (under three vertices, or no height).
+export function extrudedRing(set, i, inset = 0) {
+    const b = set.buildings;
+    const n = b.vertexCount[i];
+    if (n < 3 || !(b.height[i] > 0)) return null;
+    let ring = [];
+    for (let k = 0; k < n; ++k) ring.push([set.footprints.x[b.firstVertex[i] + k], set.footprints.y[b.firstVertex[i] + k]]);
+    if (inset > 0) ring = insetRing(ring, inset);
+    return ring.length < 3 ? null : ring;
+}
 
 function parameterColumn(set, grammar, names) {
     for (const name of names) {
@@ -42,15 +72,10 @@ export function buildExtrudedGeometry(set, grammar, { inset = 0, windows = true 
         return positions.length / 3 - 1;
     };
     for (let i = 0; i < b.count; ++i) {
-        const n = b.vertexCount[i];
-        if (n < 3 || !(b.height[i] > 0)) continue;
-        let ring = [];
-        for (let k = 0; k < n; ++k)
-            ring.push([set.footprints.x[b.firstVertex[i] + k], set.footprints.y[b.firstVertex[i] + k]]);
-        if (inset > 0) ring = insetRing(ring, inset);
-        if (ring.length < 3) continue;
+        const ring = extrudedRing(set, i, inset);
+        if (!ring) continue;
         const z0 = b.baseElevation[i], z1 = z0 + b.height[i];
-        const wall = WALL_COLOURS[b.wallMaterial[i] % 8];
+        const wall = wallColourOf(b.wallMaterial[i]);
         const id = b.id[i];
         const w = windows ? 1 : 0;
         let along = 0;
@@ -67,8 +92,8 @@ export function buildExtrudedGeometry(set, grammar, { inset = 0, windows = true 
             triangleBuilding.push(id, id);
             along += length;
         }
-        const first = push(ring[0][0], ring[0][1], z1, [0, 0, 1], ROOF_COLOUR, 0, 0, 0, i);
-        for (let k = 1; k < ring.length; ++k) push(ring[k][0], ring[k][1], z1, [0, 0, 1], ROOF_COLOUR, 0, 0, 0, i);
+        const first = push(ring[0][0], ring[0][1], z1, [0, 0, 1], EXTRUDED_ROOF_COLOUR, 0, 0, 0, i);
+        for (let k = 1; k < ring.length; ++k) push(ring[k][0], ring[k][1], z1, [0, 0, 1], EXTRUDED_ROOF_COLOUR, 0, 0, 0, i);
         const contour = ring.map(([x, y]) => new THREE.Vector2(x, y));
         for (const [p, q, r] of THREE.ShapeUtils.triangulateShape(contour, [])) {
             index.push(first + p, first + q, first + r);
@@ -102,8 +127,8 @@ export function makeExtrudedMaterial() {
                 if (vFacade.z > 0.5 && vFacade.y > 0.5 * vWindowGrid.x) {
                     vec2 cell = vec2(vFacade.x / max(vWindowGrid.y, 0.5), vFacade.y / max(vWindowGrid.x, 0.5));
                     vec2 f = fract(cell);
-                    float window = step(0.22, f.x) * step(f.x, 0.78) * step(0.3, f.y) * step(f.y, 0.82);
-                    diffuseColor.rgb = mix(diffuseColor.rgb, vec3(0.06, 0.08, 0.11), window * 0.85);
+                    float window = step(${WINDOW_ACROSS[0]}, f.x) * step(f.x, ${WINDOW_ACROSS[1]}) * step(${WINDOW_UP[0]}, f.y) * step(f.y, ${WINDOW_UP[1]});
+                    diffuseColor.rgb = mix(diffuseColor.rgb, vec3(${WINDOW_GLASS.join(', ')}), window * ${WINDOW_MIX});
                 }`,
             );
     };

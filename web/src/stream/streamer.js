@@ -13,6 +13,7 @@ import * as THREE from 'three';
 import { getBinary } from '../api.js';
 import { decodeExtrudedSet } from '../payload/extruded_set.js';
 import { decodeTerminalSet } from '../payload/terminal_set.js';
+import { buildBuildingPoints, farAsPoints, largestBuildingDiagonal, screenScale } from '../render/building_points.js';
 import { buildExtrudedGeometry } from '../render/extruded_mesh.js';
 import { geometryBytes } from '../render/geometry_bytes.js';
 import { OCCLUDER_LAYER } from '../render/occluder_depth.js';
@@ -44,7 +45,7 @@ export class Streamer {
         this.impostors = impostors;
         this.trees = trees; // TreeImpostors: species billboards
         this.treeForm = treeForm; // 'auto' (by distance), every tree as 'terminals' or 'billboards', or 'none'
-        this.materials = materials; // {extruded, backing, terminal}
+        this.materials = materials; // {extruded, backing, terminal, points (null: far buildings keep their shells)}
         this.occluders = occluders;
         this.occluderVersion = 0; // changes whenever the base volumes the cells draw change
         this.onError = onError;
@@ -58,7 +59,7 @@ export class Streamer {
             onFailed: (request, error) => onError(`${request.url}: ${error.message ?? error}`),
             onStale: () => onStale(),
         });
-        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
+        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, pointBatches: 0, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
         this.budget = { room: 0, wanted: 0, admitted: 0 }; // the latest admitTerminals
         // Terminal sets' bytes as last cached, kept after they are evicted, so that a set that
         // did not fit is not fetched again: with its GPU objects (built), or, for one never
@@ -124,6 +125,7 @@ export class Streamer {
         value.billboards?.dispose();
         value.lod0?.geometry.dispose();
         value.backing?.geometry.dispose();
+        value.points?.geometry.dispose();
     }
 
     grammar(index) {
@@ -141,6 +143,13 @@ export class Streamer {
                 old?.dispose();
             }
             return value.billboards.group;
+        }
+        if (value.kind === 'extruded' && variant === 'points') {
+            if (!value.points) {
+                value.points = buildBuildingPoints(value.set, this.materials.points);
+                this.cache.grow(url, geometryBytes(value.points.geometry));
+            }
+            return value.points;
         }
         if (value.kind === 'extruded') {
             if (!value[variant]) {
@@ -187,9 +196,10 @@ export class Streamer {
         // terminal-set cell geometry (extruded cells still draw theirs as billboards).
         const treeError = this.profile.tree_geometric_error;
         const treeDistance = treeError > 0 ? lodDistance(treeError, this.profile, view.fovY, view.viewportHeight) : Infinity;
+        if (this.materials.points) this.materials.points.uniforms.screenScale.value = screenScale(view) * this.world.renderer.getPixelRatio();
         const requests = [];
         const pinned = new Set();
-        const stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 } };
+        const stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, pointBatches: 0, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 } };
         // The base volumes the last update left in the cell groups, seen from this view.
         const occlusion = this.occluders ? this.occluders.update(view, this.occluderVersion) : null;
         const p = view.position;
@@ -236,7 +246,9 @@ export class Streamer {
                 b.shown = { extruded: ext, terminal: term };
                 if (term) this.showTerminals(b, term, frame);
                 if (ext) {
-                    objects.push(this.object(ext, this.cache.get(ext), term ? 'backing' : 'lod0'));
+                    const variant = term ? 'backing' : this.lod0Form(ext, decision.distance, view);
+                    if (visible && variant === 'points') ++stats.pointBatches;
+                    objects.push(this.object(ext, this.cache.get(ext), variant));
                     pinned.add(ext);
                     if (!term) b.drawn = { url: ext, version: this.cache.get(ext).version, kind: 'extruded' };
                 }
@@ -261,6 +273,16 @@ export class Streamer {
         this.queue.want(requests);
         this.cache.trim(pinned);
         Object.assign(this.stats, stats);
+    }
+
+    // How an extruded batch drawn at LOD0 is drawn from `distance` metres (its cell's nearest):
+    // 'points' where every one of its buildings is under the point size (building_points.js),
+    // else 'lod0', the shells.
+    lod0Form(url, distance, view) {
+        if (!this.materials.points) return 'lod0';
+        const value = this.cache.get(url);
+        value.largestDiagonal ??= largestBuildingDiagonal(value.set);
+        return farAsPoints(value.largestDiagonal, distance, view, this.profile) ? 'points' : 'lod0';
     }
 
     // The terminal sets this update wants but the budget holds back (terminal_budget.js): the

@@ -1,7 +1,7 @@
-// The stats overlay: frame rate, cells per LOD, terminals drawn per LOD, tree billboards, bytes
-// downloaded, the content cache, pending requests, where meshes, impostors and tree impostors
-// come from (or why not), how long the latest edit took to show, and the versions of the
-// batches drawn (edited ones, and the selected cell's).
+// The stats overlay: frame rate, cells per LOD (and far batches drawn as points), terminals drawn
+// per LOD, tree billboards, bytes downloaded, the content cache, pending requests, where meshes,
+// impostors and tree impostors come from (or why not), how long the latest edit took to show, and
+// the versions of the batches drawn (edited ones, and the selected cell's).
 const MiB = 1024 * 1024;
 
 // How long the user's latest edit took, the POST's reply and then its changed batches on
@@ -34,7 +34,7 @@ export class StatsPanel {
         const lines = [
             `fps ${this.fps.toFixed(1)}   mode ${s.mode}   speed ${s.speed.toFixed(1)} m/s   ${s.events}`,
             `camera ${s.position.map((v) => v.toFixed(1)).join(', ')}`,
-            `cells in view ${s.streamer.visible}: LOD0 (extruded) ${s.streamer.cells.extruded}, terminal sets ${s.streamer.cells.terminals}${s.streamer.cells.held ? ` (${s.streamer.cells.held} held back by the cache budget: LOD0, trees as billboards)` : ''}`,
+            `cells in view ${s.streamer.visible}: LOD0 (extruded) ${s.streamer.cells.extruded}, terminal sets ${s.streamer.cells.terminals}${s.streamer.cells.held ? ` (${s.streamer.cells.held} held back by the cache budget: LOD0, trees as billboards)` : ''}${s.streamer.pointBatches ? `; ${s.streamer.pointBatches} far batches as points` : ''}`,
             `terminals drawn: LOD4 ${s.streamer.terminals[4]} (coarse mesh ${s.streamer.terminals.coarse}), LOD3 ${s.streamer.terminals[3]}, LOD2 ${s.streamer.terminals[2]}; ${s.occlusion}`,
             `trees: ${s.streamer.trees.billboards} billboards${s.streamer.trees.occluded ? ` (${s.streamer.trees.occluded} of them hidden)` : ''}, ${s.streamer.trees.terminals} from terminals${s.streamer.trees.edited ? ` (${s.streamer.trees.edited} edited ones far away)` : ''}`,
             `downloaded ${(s.traffic.bytes / MiB).toFixed(2)} MiB in ${s.traffic.requests} requests (${s.traffic.errors} errors)`,
