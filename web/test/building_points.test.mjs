@@ -12,8 +12,8 @@ import { makeLights } from '../src/render/lights.js';
 // volume), and a clockwise L of 4 x 4 m less its 2 x 2 m corner, 3 m tall (wall material 11).
 function extrudedSet() {
     return {
-        parametersPerBuilding: 0,
-        parameters: [],
+        parametersPerBuilding: 1,
+        parameters: [Float32Array.of(2, 2, 0)],
         buildings: {
             count: 3, id: Uint32Array.of(42, 43, 44), firstVertex: Uint32Array.of(0, 4, 6), vertexCount: Uint32Array.of(4, 2, 6),
             height: Float32Array.of(8, 5, 3), baseElevation: Float32Array.of(2, 0, 0), wallMaterial: Uint32Array.of(3, 0, 11),
@@ -27,8 +27,11 @@ function extrudedSet() {
 const { lighting } = makeLights();
 const material = makeBuildingPointMaterial(lighting);
 
+// The rectangle's storeys are 2 m (its grammar declares floor_h), the L's the default 3 m.
+const grammar = { parameters: [{ name: 'floor_h' }] };
+
 function pointsOf(set) {
-    const { attributes } = buildBuildingPoints(set, material).geometry;
+    const { attributes } = buildBuildingPoints(set, grammar, material).geometry;
     const at = (name, i) => Array.from(attributes[name].array.slice(3 * i, 3 * i + 3));
     return Array.from({ length: attributes.position.count }, (_, i) => ({
         centre: at('position', i),
@@ -53,24 +56,29 @@ test('as many points as the shells draw buildings', () => {
     assert.equal(new Set(buildingOfTriangle).size, pointsOf(set).length);
 });
 
-test("a point's wall colour is the window pattern's mean of its material's colour", () => {
-    const [rectangle, l] = pointsOf(extrudedSet());
-    for (const [point, material] of [[rectangle, 3], [l, 11]]) {
-        const wall = wallColourOf(material);
-        const mean = wallTextureMean(wall);
-        point.wall.forEach((v, k) => assert.ok(Math.abs(v - mean[k]) < 1e-4, `channel ${k}: ${v} against ${mean[k]}`));
-    }
-    // The mean of the pattern sampled finely: the windows take 0.56 x 0.52 of a bay, darkened
-    // 0.85 of the way to the glass.
-    const wall = wallColourOf(3), glass = [0.06, 0.08, 0.11], steps = 500;
+test("a point's wall colour is the window pattern's mean over its wall", () => {
+    const [rectangle] = pointsOf(extrudedSet());
+    const mean = wallTextureMean(wallColourOf(3), 8, 2);
+    rectangle.wall.forEach((v, k) => assert.ok(Math.abs(v - mean[k]) < 1e-4, `channel ${k}: ${v} against ${mean[k]}`));
+    // The pattern sampled finely over an 8 m wall of 2 m storeys and 3 m bays: bare up to half a
+    // storey, then windows over 0.56 x 0.52 of each bay, darkened 0.85 of the way to the glass.
+    const wall = wallColourOf(3), glass = [0.06, 0.08, 0.11], steps = 800;
     const sampled = [0, 0, 0];
     for (let i = 0; i < steps; ++i)
         for (let j = 0; j < steps; ++j) {
-            const fx = (i + 0.5) / steps, fy = (j + 0.5) / steps;
-            const window = fx >= 0.22 && fx <= 0.78 && fy >= 0.3 && fy <= 0.82 ? 0.85 : 0;
+            const x = (3 * (i + 0.5)) / steps, y = (8 * (j + 0.5)) / steps;
+            const fx = x / 3, fy = (y / 2) % 1;
+            const window = y > 1 && fx >= 0.22 && fx <= 0.78 && fy >= 0.3 && fy <= 0.82 ? 0.85 : 0;
             for (let k = 0; k < 3; ++k) sampled[k] += (wall[k] + (glass[k] - wall[k]) * window) / (steps * steps);
         }
-    wallTextureMean(wall).forEach((v, k) => assert.ok(Math.abs(v - sampled[k]) < 1e-3, `channel ${k}: ${v} against ${sampled[k]}`));
+    mean.forEach((v, k) => assert.ok(Math.abs(v - sampled[k]) < 1e-3, `channel ${k}: ${v} against ${sampled[k]}`));
+    // No wall, or a storey twice its height: bare.
+    assert.deepEqual(wallTextureMean(wall, 0, 3), wall);
+    assert.deepEqual(wallTextureMean(wall, 1, 3), wall);
+    // Without the grammar (unknown to the viewer), storeys of 3 m.
+    const points = buildBuildingPoints(extrudedSet(), undefined, material).geometry.attributes.wallColour.array;
+    const fallback = wallTextureMean(wallColourOf(3), 8, 3);
+    fallback.forEach((v, k) => assert.ok(Math.abs(points[k] / 65535 - v) < 1e-4));
 });
 
 test('the largest box diagonal of a set, 0 without a base volume', () => {
@@ -96,7 +104,7 @@ test('a batch is points once its largest box is under the point size at its near
 });
 
 test('the points are not picked: a click on a far building selects the ground', () => {
-    const points = buildBuildingPoints(extrudedSet(), material);
+    const points = buildBuildingPoints(extrudedSet(), grammar, material);
     const hits = [];
     points.raycast(null, hits);
     assert.deepEqual(hits, []);

@@ -12,7 +12,7 @@ import * as THREE from 'three';
 
 import { screenSpaceError } from '../stream/lod_policy.js';
 
-import { EXTRUDED_ROOF_COLOUR, extrudedRing, wallColourOf, wallTextureMean } from './extruded_mesh.js';
+import { EXTRUDED_ROOF_COLOUR, extrudedRing, floorHeights, wallColourOf, wallTextureMean } from './extruded_mesh.js';
 import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
 // How many times the error bound a building's box may span on screen and still be a point:
@@ -53,8 +53,10 @@ export function largestBuildingDiagonal(set) {
 
 // The set's base volumes as a THREE.Points of `material` (makeBuildingPointMaterial), one
 // vertex each at the centre of its box (cell-local) with its height, footprint area and
-// perimeter, and its wall colour at the window pattern's mean.
-export function buildBuildingPoints(set, material) {
+// perimeter, and its wall colour at the window pattern's mean for its storey height (`grammar`:
+// the set's, for its `floor_h`).
+export function buildBuildingPoints(set, grammar, material) {
+    const floorH = floorHeights(set, grammar);
     const centres = [], shapes = [], walls = [];
     for (const { i, ring, minX, minY, maxX, maxY, height } of baseVolumes(set)) {
         let area = 0, perimeter = 0;
@@ -65,7 +67,8 @@ export function buildBuildingPoints(set, material) {
         }
         centres.push(0.5 * (minX + maxX), 0.5 * (minY + maxY), set.buildings.baseElevation[i] + 0.5 * height);
         shapes.push(height, 0.5 * Math.abs(area), perimeter);
-        walls.push(...wallTextureMean(wallColourOf(set.buildings.wallMaterial[i])).map((v) => v * 65535));
+        const mean = wallTextureMean(wallColourOf(set.buildings.wallMaterial[i]), height, floorH ? floorH[i] : undefined);
+        walls.push(...mean.map((v) => v * 65535));
     }
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.Float32BufferAttribute(centres, 3));

@@ -23,15 +23,18 @@ const WINDOW_MIX = 0.85;
 const WINDOW_ACROSS = [0.22, 0.78];
 const WINDOW_UP = [0.3, 0.82];
 const WINDOW_SHARE = (WINDOW_ACROSS[1] - WINDOW_ACROSS[0]) * (WINDOW_UP[1] - WINDOW_UP[0]);
+const DEFAULT_FLOOR_H = 3; // a storey, and a bay, where the grammar declares none
 
 // The linear wall colour of wall material `material`.
 export function wallColourOf(material) {
     return WALL_COLOURS[material % WALL_COLOURS.length];
 }
 
-// A wall's colour where its window bays are under a pixel: the pattern's mean.
-export function wallTextureMean(wall) {
-    return wall.map((v, k) => v + (WINDOW_GLASS[k] - v) * WINDOW_MIX * WINDOW_SHARE);
+// A wall's colour where its window bays are under a pixel: the pattern's mean over a wall of
+// `height` metres whose storeys are `floorH` (the pattern leaves the lowest half storey bare).
+export function wallTextureMean(wall, height, floorH = DEFAULT_FLOOR_H) {
+    const windowed = height > 0 ? Math.min(Math.max(1 - (0.5 * floorH) / height, 0), 1) : 0;
+    return wall.map((v, k) => v + (WINDOW_GLASS[k] - v) * WINDOW_MIX * WINDOW_SHARE * windowed);
 }
 
 // Building `i`'s footprint ring as [x, y] pairs, inset by `inset` metres, or null where it
@@ -44,6 +47,11 @@ export function extrudedRing(set, i, inset = 0) {
     for (let k = 0; k < n; ++k) ring.push([set.footprints.x[b.firstVertex[i] + k], set.footprints.y[b.firstVertex[i] + k]]);
     if (inset > 0) ring = insetRing(ring, inset);
     return ring.length < 3 ? null : ring;
+}
+
+// The buildings' storey heights where their grammar declares `floor_h`, else null.
+export function floorHeights(set, grammar) {
+    return grammar ? parameterColumn(set, grammar, ['floor_h']) : null;
 }
 
 function parameterColumn(set, grammar, names) {
@@ -60,7 +68,7 @@ function parameterColumn(set, grammar, names) {
 // extruded cell in view stays resident.
 export function buildExtrudedGeometry(set, grammar, { inset = 0, windows = true } = {}) {
     const b = set.buildings;
-    const floorH = parameterColumn(set, grammar, ['floor_h']);
+    const floorH = floorHeights(set, grammar);
     const bay = parameterColumn(set, grammar, ['tile_w', 'module_w']);
     const positions = [], normals = [], colours = [], facade = [], grid = [], index = [], triangleBuilding = [];
     const push = (x, y, z, n, c, u, v, wall, i) => {
@@ -68,7 +76,7 @@ export function buildExtrudedGeometry(set, grammar, { inset = 0, windows = true 
         normals.push(n[0] * 127, n[1] * 127, n[2] * 127);
         colours.push(c[0] * 65535, c[1] * 65535, c[2] * 65535);
         facade.push(u, v, wall);
-        grid.push(floorH ? floorH[i] : 3, bay ? bay[i] : 3);
+        grid.push(floorH ? floorH[i] : DEFAULT_FLOOR_H, bay ? bay[i] : DEFAULT_FLOOR_H);
         return positions.length / 3 - 1;
     };
     for (let i = 0; i < b.count; ++i) {

@@ -146,7 +146,7 @@ export class Streamer {
         }
         if (value.kind === 'extruded' && variant === 'points') {
             if (!value.points) {
-                value.points = buildBuildingPoints(value.set, this.materials.points);
+                value.points = buildBuildingPoints(value.set, this.grammar(value.set.grammar), this.materials.points);
                 this.cache.grow(url, geometryBytes(value.points.geometry));
             }
             return value.points;
