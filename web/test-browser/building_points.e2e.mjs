@@ -56,6 +56,7 @@ test('far batches are points that stand for their buildings', { timeout: 240000 
         const pitch = (-Math.atan2(up, back) * 180) / Math.PI;
         const camera = `camera=${centre[0]},${centre[1] - back},${city.ground + up},90,${pitch}`;
         const points = await settledView(page, `${base}?aa=0&${camera}`);
+        const stats = await page.locator('#stats').textContent();
         const hidden = await withoutPoints(page);
         const shells = await settledView(page, `${base}?aa=0&${camera}&points=0`);
         fs.writeFileSync(path.join(artifacts, 'points-on.png'), points.image);
@@ -67,6 +68,7 @@ test('far batches are points that stand for their buildings', { timeout: 240000 
         const extruded = points.state.streamer.cells.extruded;
         assert.ok(extruded > 0, `cells ${JSON.stringify(points.state.streamer.cells)}`);
         assert.ok(points.state.streamer.pointBatches >= extruded, `${points.state.streamer.pointBatches} batches as points of ${extruded} cells`);
+        assert.match(stats, new RegExp(`; ${points.state.streamer.pointBatches} far batches as points`), 'the stats panel says so');
         assert.equal(shells.state.streamer.pointBatches, 0);
         assert.ok(points.state.triangles < 0.5 * shells.state.triangles, `triangles ${points.state.triangles} against ${shells.state.triangles}`);
 
