@@ -4,9 +4,10 @@
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
-import { buildBuildingPoints, farAsPoints, largestBuildingDiagonal, makeBuildingPointMaterial, POINTS_UNDER_SSE, screenScale } from '../src/render/building_points.js';
+import { buildBuildingPoints, farAsPoints, largestBuildingDiagonal, makeBuildingPointMaterial, POINTS_UNDER_SSE } from '../src/render/building_points.js';
 import { buildExtrudedGeometry, wallColourOf, wallTextureMean } from '../src/render/extruded_mesh.js';
 import { makeLights } from '../src/render/lights.js';
+import { screenScale } from '../src/stream/lod_policy.js';
 
 // A 10 x 6 m rectangle 8 m tall on a base at 2 m (wall material 3), a two-vertex footprint (no
 // volume), and a clockwise L of 4 x 4 m less its 2 x 2 m corner, 3 m tall (wall material 11).
@@ -92,7 +93,7 @@ test('the largest box diagonal of a set, 0 without a base volume', () => {
 test('a batch is points once its largest box is under the point size at its nearest distance', () => {
     const view = { viewportHeight: 720, fovY: Math.PI / 3 };
     const profile = { max_screen_space_error: 2 };
-    const scale = screenScale(view);
+    const scale = screenScale(view.viewportHeight, view.fovY);
     assert.ok(Math.abs(scale - 360 / Math.tan(Math.PI / 6)) < 1e-9);
     const diagonal = 20;
     const boundary = (diagonal * scale) / (POINTS_UNDER_SSE * profile.max_screen_space_error);

@@ -27,11 +27,6 @@ export function farAsPoints(diagonal, distance, view, profile) {
     return screenSpaceError(diagonal, distance, view.viewportHeight, view.fovY) < POINTS_UNDER_SSE * profile.max_screen_space_error;
 }
 
-// Pixels one metre spans at one metre's distance for `view`.
-export function screenScale(view) {
-    return view.viewportHeight / (2 * Math.tan(0.5 * view.fovY));
-}
-
 // Each base volume of an extruded set (the buildings the shells draw: extrudedRing) as
 // {i, ring, minX, minY, maxX, maxY, height}.
 function* baseVolumes(set) {

@@ -65,14 +65,14 @@ function quadGeometry(quads, old) {
     return geometry;
 }
 
-export class ImpostorQuads extends THREE.Mesh {
-    // `capacity`: the most quads it may draw. Its matrices and vertices grow with the quads it
-    // has drawn, as most terminals of a batch are never at this LOD.
-    constructor(material, capacity) {
-        super(quadGeometry(0, null), material);
+// A merged mesh of quads (quadCorners' six indices each) drawing the first `count` of at most
+// `capacity`: ImpostorQuads and tree_quads.js's TreeQuads. `count` stands where an
+// InstancedMesh's would, so what reads one reads the other. Not frustum culled: the cell's
+// bounds decide what is visible.
+export class QuadMesh extends THREE.Mesh {
+    constructor(geometry, material, capacity) {
+        super(geometry, material); // which sets `count` (to 1) before there is a capacity: 0
         this.capacity = capacity;
-        this.instanceMatrix = new QuadMatrices(this);
-        this.count = capacity;
         this.frustumCulled = false;
     }
 
@@ -80,7 +80,17 @@ export class ImpostorQuads extends THREE.Mesh {
         return this.geometry.drawRange.count / 6;
     }
     set count(quads) {
-        this.geometry.setDrawRange(0, 6 * Math.min(quads, this.capacity));
+        this.geometry.setDrawRange(0, 6 * Math.max(0, Math.min(quads, this.capacity ?? 0)));
+    }
+}
+
+export class ImpostorQuads extends QuadMesh {
+    // `capacity`: the most quads it may draw. Its matrices and vertices grow with the quads it
+    // has drawn, as most terminals of a batch are never at this LOD.
+    constructor(material, capacity) {
+        super(quadGeometry(0, null), material, capacity);
+        this.instanceMatrix = new QuadMatrices(this);
+        this.count = capacity;
     }
 
     // Bytes held for the GPU: the quads' matrices and the vertices grown so far.

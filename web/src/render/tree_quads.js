@@ -8,18 +8,16 @@
 import * as THREE from 'three';
 
 import { geometryBytes } from './geometry_bytes.js';
-import { quadCorners } from './impostor_quads.js';
+import { QuadMesh, quadCorners } from './impostor_quads.js';
 
-export class TreeQuads extends THREE.Mesh {
+export class TreeQuads extends QuadMesh {
     // `capacity`: the most trees it may draw; none is drawn until `show`.
     constructor(material, capacity) {
         const geometry = quadCorners(capacity);
         const bases = new THREE.BufferAttribute(new Float32Array(12 * capacity), 3);
         bases.setUsage(THREE.DynamicDrawUsage);
         geometry.setAttribute('treeBase', bases);
-        super(geometry, material);
-        this.capacity = capacity;
-        this.frustumCulled = false; // the cell's bounds decide visibility
+        super(geometry, material, capacity);
         this.show(0);
     }
 
@@ -33,15 +31,6 @@ export class TreeQuads extends THREE.Mesh {
     show(count) {
         this.count = count;
         this.geometry.attributes.treeBase.needsUpdate = true;
-    }
-
-    // The billboards drawn, as ImpostorQuads' `count` (THREE.Mesh sets it to 1 before this
-    // constructor has a capacity, which then sets 0).
-    get count() {
-        return this.geometry.drawRange.count / 6;
-    }
-    set count(quads) {
-        this.geometry.setDrawRange(0, 6 * Math.max(0, Math.min(quads, this.capacity)));
     }
 
     // Bytes held for the GPU.

@@ -17,14 +17,19 @@
 export const EXTRUDED = 'extruded';
 export const TERMINALS = 'terminals';
 
+// The pixels one metre spans at one metre's distance.
+export function screenScale(viewportHeight, fovY) {
+    return viewportHeight / (2 * Math.tan(0.5 * fovY));
+}
+
 export function screenSpaceError(geometricError, distance, viewportHeight, fovY) {
     if (distance <= 0) return Infinity;
-    return (geometricError * viewportHeight) / (distance * 2 * Math.tan(fovY * 0.5));
+    return (geometricError * screenScale(viewportHeight, fovY)) / distance;
 }
 
 // The distance from which a LOD of this geometric error stays under the profile's budget.
 export function lodDistance(geometricError, profile, fovY, viewportHeight) {
-    return (geometricError * viewportHeight) / (2 * Math.tan(0.5 * fovY) * profile.max_screen_space_error);
+    return (geometricError * screenScale(viewportHeight, fovY)) / profile.max_screen_space_error;
 }
 
 // Distance from point p to the box [min, max] (arrays of 3), 0 inside.

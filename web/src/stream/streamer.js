@@ -13,7 +13,7 @@ import * as THREE from 'three';
 import { getBinary } from '../api.js';
 import { decodeExtrudedSet } from '../payload/extruded_set.js';
 import { decodeTerminalSet } from '../payload/terminal_set.js';
-import { buildBuildingPoints, farAsPoints, largestBuildingDiagonal, screenScale } from '../render/building_points.js';
+import { buildBuildingPoints, farAsPoints, largestBuildingDiagonal } from '../render/building_points.js';
 import { buildExtrudedGeometry } from '../render/extruded_mesh.js';
 import { geometryBytes } from '../render/geometry_bytes.js';
 import { OCCLUDER_LAYER } from '../render/occluder_depth.js';
@@ -21,7 +21,7 @@ import { TerminalBatch } from '../render/terminal_batch.js';
 import { TreeBillboards } from '../render/tree_billboards.js';
 import { ContentCache } from './content_cache.js';
 import { FetchQueue } from './fetch_queue.js';
-import { decideCell, EXTRUDED, lodDistance, TERMINALS, terminalLodDistances } from './lod_policy.js';
+import { decideCell, EXTRUDED, lodDistance, screenScale, TERMINALS, terminalLodDistances } from './lod_policy.js';
 import { admitTerminalSets, bytesPerMember } from './terminal_budget.js';
 
 const BACKING_INSET = 0.5; // metres: base volumes behind terminal facades, as the native renderer
@@ -196,7 +196,7 @@ export class Streamer {
         // terminal-set cell geometry (extruded cells still draw theirs as billboards).
         const treeError = this.profile.tree_geometric_error;
         const treeDistance = treeError > 0 ? lodDistance(treeError, this.profile, view.fovY, view.viewportHeight) : Infinity;
-        if (this.materials.points) this.materials.points.uniforms.screenScale.value = screenScale(view) * this.world.renderer.getPixelRatio();
+        if (this.materials.points) this.materials.points.uniforms.screenScale.value = screenScale(view.viewportHeight, view.fovY) * this.world.renderer.getPixelRatio();
         const requests = [];
         const pinned = new Set();
         const stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, pointBatches: 0, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 } };
