@@ -57,6 +57,7 @@ try {
         out.cache = state.cache; // payloads and what they hold for the GPU, in bytes
         out.cells = state.streamer.cells; // in view, per LOD, and those the budget held back
         out.point_batches = state.streamer.pointBatches; // extruded batches whose buildings are points
+        out.tree_points = state.streamer.trees.points; // far trees drawn as points
         out.terminal_budget = state.terminalBudget;
         // The cache's bytes by payload kind and grammar kind ("terminal building", "extruded tree", ...).
         // And per building grammar, the bytes its terminal sets take per building.

@@ -2,7 +2,7 @@
 // chromium (the browser test's setup), one viewer URL; every 10 s it prints the seconds since
 // the page was opened and what the viewer holds (cache entries and bytes, requests pending, the
 // frame rate, the last frame's triangles, the extruded batches drawn as points, the tree
-// billboards), until the viewer is idle (everything it wants drawn) or LIMIT_SECONDS pass; then
+// billboards and points), until the viewer is idle (everything it wants drawn) or LIMIT_SECONDS pass; then
 // one line with the median of 5 frames rendered by hand, each timed until a one-pixel
 // readPixels returns, with their draw calls, triangles and points. A view that frame_cost.mjs
 // cannot time, because it does not settle within that script's ten minutes, is measured here.
@@ -30,7 +30,7 @@ try {
             if (!s) return null;
             return {
                 entries: s.cache.entries, bytes: s.cache.bytes, pending: s.pending, fps: Number(s.fps.toFixed(2)), triangles: s.triangles,
-                point_batches: s.streamer.pointBatches, tree_billboards: s.streamer.trees.billboards, idle: window.hexlod.idle(),
+                point_batches: s.streamer.pointBatches, tree_billboards: s.streamer.trees.billboards, tree_points: s.streamer.trees.points, idle: window.hexlod.idle(),
             };
         });
         idle = sample?.idle ?? false;

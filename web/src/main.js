@@ -59,8 +59,9 @@ async function start() {
     const coarse = params.get('coarse') !== '0';
     for (const g of scene.grammars) libraries[g.index] = new ShapeLibrary(g, { meshes: !!capabilities.terminal_meshes, coarse });
     const impostors = new ImpostorSet(scene, world.lighting);
-    // ?treeboxes=0 draws each tree billboard over its sphere's whole square, for comparisons.
-    const trees = new TreeImpostors(scene, world.lighting, { multisampled: antialias, boxes: params.get('treeboxes') !== '0' });
+    // ?treeboxes=0 draws each tree billboard over its sphere's whole square, and ?treepoints=0
+    // keeps far trees' billboards instead of drawing them as points, for comparisons.
+    const trees = new TreeImpostors(scene, world.lighting, { multisampled: antialias, boxes: params.get('treeboxes') !== '0', points: params.get('treepoints') !== '0' });
     if (scene.counts?.trees > 0 && !capabilities.tree_billboards)
         messages.add('tree impostors are not served by this service: trees beyond the terminal distance are not drawn', 'notice');
     const terminal = new THREE.MeshLambertMaterial({ vertexColors: true });

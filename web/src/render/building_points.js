@@ -12,6 +12,7 @@ import * as THREE from 'three';
 
 import { screenSpaceError } from '../stream/lod_policy.js';
 
+import { COVERAGE_HASH_GLSL, POINT_FRAGMENT } from './far_points.js';
 import { EXTRUDED_ROOF_COLOUR, extrudedRing, floorHeights, wallColourOf, wallTextureMean } from './extruded_mesh.js';
 import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
 
@@ -86,17 +87,7 @@ ${LIGHTING_GLSL}
 #include <fog_pars_vertex>
 const float kPi = 3.14159265;
 
-// A fixed number in [0, 1) per building (lod/shaders/coverage_hash.glsl), keyed by its place.
-float coverageHash(vec3 p) {
-    uint i = floatBitsToUint(p.x) ^ (floatBitsToUint(p.y) * 0x9e3779b9u) ^ (floatBitsToUint(p.z) * 0x85ebca6bu);
-    i ^= i >> 16;
-    i *= 0x7feb352du;
-    i ^= i >> 15;
-    i *= 0x846ca68bu;
-    i ^= i >> 16;
-    return float(i >> 8) * (1.0 / 16777216.0);
-}
-
+${COVERAGE_HASH_GLSL}
 void main() {
     vec3 centre = (modelMatrix * vec4(position, 1.0)).xyz; // camera-relative world (world.js)
     float distance = max(length(centre), 1e-3);
@@ -107,8 +98,6 @@ void main() {
     float area = roof + walls; // square metres facing the camera
     float side = sqrt(area) * screenScale / distance;
     gl_PointSize = max(side, 1.0);
-    // A point under a pixel is kept with the probability of its area, so that a field of them
-    // covers on average what their shells would.
     if (side < 1.0 && coverageHash(position) >= side * side) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume
         return;
@@ -124,21 +113,11 @@ void main() {
 }
 `;
 
-const FRAGMENT = /* glsl */ `
-flat in vec3 vColour;
-#include <fog_pars_fragment>
-void main() {
-    gl_FragColor = vec4(vColour, 1.0);
-    #include <colorspace_fragment>
-    #include <fog_fragment>
-}
-`;
-
 // The one material every batch's points share; `lighting`: World's (lights.js).
 export function makeBuildingPointMaterial(lighting) {
     return new THREE.ShaderMaterial({
         vertexShader: VERTEX,
-        fragmentShader: FRAGMENT,
+        fragmentShader: POINT_FRAGMENT,
         fog: true,
         uniforms: THREE.UniformsUtils.merge([
             THREE.UniformsLib.fog,

@@ -182,7 +182,7 @@ export class TerminalBatch {
             const filled = { 4: 0, 3: 0, 2: 0, [COARSE]: 0 };
             const changed = { 4: false, 3: false, 2: false, [COARSE]: false };
             for (let i = run.first; i < run.first + run.count; ++i) {
-                if (cut && cut.isBillboard(this.buildings[i])) continue;
+                if (cut && cut.isFar(this.buildings[i])) continue;
                 const f = this.frames, k = 13 * i;
                 corner[0] = f[k] - camera[0];
                 corner[1] = f[k + 1] - camera[1];

@@ -10,13 +10,17 @@
 // behind buildings where the tree does, not where its flat quad would. As in the native
 // renderer, coverage becomes the sample mask on a multisampled canvas (alpha to coverage) and is
 // a cutout at one half otherwise; the stored normals light it as the meshes are lit (lights.js).
+// A far tree small on screen is a point instead (tree_points.js), of its species' view
+// averages, which are computed here as the atlases load (tree_view_averages.js).
 import * as THREE from 'three';
 
 import { loadTexture } from './impostors.js';
 import { FULL_SPHERE, IMPOSTOR_ATLAS_GLSL, TREE_VIEWS_GLSL } from './impostor_views.js';
 import { layoutTableUniforms, SPECIES_TABLE_RESOLUTION, VIEW_TABLE_GLSL } from './view_table.js';
 import { LIGHTING_GLSL, lightingUniforms } from './lights.js';
+import { TreePointMaterial, TreePoints } from './tree_points.js';
 import { TreeQuads } from './tree_quads.js';
+import { imagePixels, treeViewAverages } from './tree_view_averages.js';
 
 const VERTEX = /* glsl */ `
 uniform vec4 sphere;      // centre xyz, radius (tree space)
@@ -31,6 +35,7 @@ out vec2 vUv0, vUv1, vUv2, vUv3;
 out vec4 vClip, vClipForward;
 ${TREE_VIEWS_GLSL}
 ${VIEW_TABLE_GLSL}
+#include <fog_pars_vertex>
 vec2 viewUv(float view, vec3 q) {
     vec3 right, up;
     treeBasis(treeViewDirection(view, atlasLayout.x), right, up);
@@ -77,6 +82,8 @@ void main() {
     vClip = toClip * vec4(centre + sphere.w * q, 1.0);
     vClipForward = toClip * vec4(sphere.w * forward, 0.0);
     gl_Position = vClip;
+    vec4 mvPosition = viewMatrix * vec4(centre + sphere.w * q, 1.0);
+    #include <fog_vertex>
 }
 `;
 
@@ -92,6 +99,7 @@ in vec2 vUv0, vUv1, vUv2, vUv3;
 in vec4 vClip, vClipForward;
 ${IMPOSTOR_ATLAS_GLSL}
 ${LIGHTING_GLSL}
+#include <fog_pars_fragment>
 void main() {
     vec4 colour, normalDepth;
     accumulateViews(albedoAtlas, normalAtlas, atlasLayout, vViews, vWeights, vUv0, vUv1, vUv2, vUv3, colour, normalDepth);
@@ -103,6 +111,7 @@ void main() {
     // Tree space is world space turned by nothing: its normals are world normals.
     gl_FragColor = vec4(albedo * lambertLight(n, sunDirection, vec3(0.0, 0.0, 1.0)), min(colour.a, 1.0));
     #include <colorspace_fragment>
+    #include <fog_fragment>
 }
 `;
 
@@ -114,20 +123,23 @@ function speciesKey(grammar, parameters) {
 export class TreeImpostors {
     // `multisampled`: whether the canvas has samples for alpha to coverage.
     // `boxes`: each billboard covers its species' box alone (false: the sphere's whole square,
-    // for comparisons).
-    constructor(scene, lighting, { multisampled = true, boxes = true } = {}) {
+    // for comparisons). `points`: far trees small on screen are points (false: billboards).
+    constructor(scene, lighting, { multisampled = true, boxes = true, points = true } = {}) {
         this.layout = scene.tree_impostor_layout ?? null;
         this.lighting = lighting;
         this.multisampled = multisampled;
         this.boxes = boxes;
-        this.species = []; // by species index: {albedo, normal, impostor, material}
+        this.pointsAllowed = points;
+        this.species = []; // by species index: {albedo, normal, impostor, material, averages}
         this.byKey = new Map();
         this.failed = [];
+        this.withoutPoints = []; // species whose view averages could not be read, and why
         this.enabled = !!scene.capabilities?.tree_billboards && this.layout?.sphere === FULL_SPHERE;
         this.table = this.enabled ? layoutTableUniforms(this.layout, SPECIES_TABLE_RESOLUTION, this.failed) : null;
         this.enabled &&= !!this.table;
         this.generation = 0; // grows with every species added after the start
         this.adding = new Set(); // species indices being loaded by add()
+        this.points = null; // the far trees' point material, once a batch draws points
         this.isReady = false;
         this.ready = (this.enabled ? this.load(scene.tree_species ?? []) : Promise.resolve()).then(() => (this.isReady = true));
     }
@@ -138,7 +150,8 @@ export class TreeImpostors {
             list.map((s) =>
                 Promise.all([loadTexture(loader, s.impostor.albedo_url, true), loadTexture(loader, s.impostor.normal_url, false)]).then(
                     ([albedo, normal]) => {
-                        this.species[s.index] = { albedo, normal, impostor: s.impostor, material: null };
+                        const averages = this.pointsAllowed ? this.viewAverages(albedo, normal, s.name) : null;
+                        this.species[s.index] = { albedo, normal, impostor: s.impostor, material: null, averages };
                         this.byKey.set(speciesKey(s.grammar, s.parameters), s.index);
                     },
                     (e) => this.failed.push(`${s.name}: ${e?.message ?? 'could not load its atlas'}`),
@@ -157,8 +170,35 @@ export class TreeImpostors {
         await this.load([entry]);
         this.adding.delete(entry.index);
         if (!this.species[entry.index]) return false;
+        this.points?.setSpecies(this.species);
         ++this.generation;
         return true;
+    }
+
+    // The view averages of species `name`'s atlases (tree_view_averages.js), or null where
+    // they cannot be read: its far trees are then billboards at any distance.
+    viewAverages(albedo, normal, name) {
+        try {
+            const a = imagePixels(albedo.image), n = imagePixels(normal.image);
+            return treeViewAverages(a.data, n.data, a.width, this.layout);
+        } catch (e) {
+            this.withoutPoints.push(`${name}: ${e?.message ?? e}`);
+            return null;
+        }
+    }
+
+    // Whether the trees of species `index` can be drawn as points.
+    hasPoints(index) {
+        return this.pointsAllowed && !!this.species[index]?.averages;
+    }
+
+    // Room for `capacity` far trees drawn as points (tree_points.js).
+    makePoints(capacity) {
+        if (!this.points) {
+            this.points = new TreePointMaterial(this.table, this.lighting);
+            this.points.setSpecies(this.species);
+        }
+        return new TreePoints(this.points, capacity);
     }
 
     // The species index of a tree of `grammar` with these parameter values, or -1 (an edited
@@ -189,7 +229,10 @@ export class TreeImpostors {
             blendDst: THREE.ZeroFactor,
             blendSrcAlpha: THREE.ZeroFactor,
             blendDstAlpha: THREE.OneFactor,
+            // Fogged as the meshes, the ground and the far points are: far trees fade with them.
+            fog: true,
             uniforms: {
+                ...THREE.UniformsUtils.clone(THREE.UniformsLib.fog),
                 sphere: { value: new THREE.Vector4(...imp.centre, imp.radius) },
                 boxLo: { value: new THREE.Vector3(...box[0]) },
                 boxHi: { value: new THREE.Vector3(...box[1]) },
@@ -215,6 +258,7 @@ export class TreeImpostors {
     get status() {
         if (!this.enabled) return this.failed.length ? `off: ${this.failed[0]}` : 'off';
         const failed = this.failed.length ? `, ${this.failed.length} failed` : '';
-        return `${this.byKey.size} species${failed}`;
+        const pointless = this.withoutPoints.length ? `, ${this.withoutPoints.length} without points (${this.withoutPoints[0]})` : '';
+        return `${this.byKey.size} species${failed}${pointless}`;
     }
 }

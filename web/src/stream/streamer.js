@@ -19,6 +19,7 @@ import { geometryBytes } from '../render/geometry_bytes.js';
 import { OCCLUDER_LAYER } from '../render/occluder_depth.js';
 import { TerminalBatch } from '../render/terminal_batch.js';
 import { TreeBillboards } from '../render/tree_billboards.js';
+import { pointDistancePerMetre } from '../render/tree_points.js';
 import { ContentCache } from './content_cache.js';
 import { FetchQueue } from './fetch_queue.js';
 import { decideCell, EXTRUDED, lodDistance, screenScale, TERMINALS, terminalLodDistances } from './lod_policy.js';
@@ -43,7 +44,7 @@ export class Streamer {
         this.world = world;
         this.libraries = libraries; // per grammar index: ShapeLibrary
         this.impostors = impostors;
-        this.trees = trees; // TreeImpostors: species billboards
+        this.trees = trees; // TreeImpostors: species billboards and points
         this.treeForm = treeForm; // 'auto' (by distance), every tree as 'terminals' or 'billboards', or 'none'
         this.materials = materials; // {extruded, backing, terminal, points (null: far buildings keep their shells)}
         this.occluders = occluders;
@@ -59,7 +60,7 @@ export class Streamer {
             onFailed: (request, error) => onError(`${request.url}: ${error.message ?? error}`),
             onStale: () => onStale(),
         });
-        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, pointBatches: 0, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
+        this.stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, pointBatches: 0, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, points: 0, terminals: 0, edited: 0, occluded: 0 }, decodeMs: 0 };
         this.budget = { room: 0, wanted: 0, admitted: 0 }; // the latest admitTerminals
         // Terminal sets' bytes as last cached, kept after they are evicted, so that a set that
         // did not fit is not fetched again: with its GPU objects (built), or, for one never
@@ -196,10 +197,14 @@ export class Streamer {
         // terminal-set cell geometry (extruded cells still draw theirs as billboards).
         const treeError = this.profile.tree_geometric_error;
         const treeDistance = treeError > 0 ? lodDistance(treeError, this.profile, view.fovY, view.viewportHeight) : Infinity;
-        if (this.materials.points) this.materials.points.uniforms.screenScale.value = screenScale(view.viewportHeight, view.fovY) * this.world.renderer.getPixelRatio();
+        const scale = screenScale(view.viewportHeight, view.fovY);
+        const pixelScale = scale * this.world.renderer.getPixelRatio();
+        if (this.materials.points) this.materials.points.uniforms.screenScale.value = pixelScale;
+        if (this.trees.points) this.trees.points.uniforms.screenScale.value = pixelScale;
+        const treePoints = pointDistancePerMetre(scale, this.profile.max_screen_space_error);
         const requests = [];
         const pinned = new Set();
-        const stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, pointBatches: 0, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, terminals: 0, edited: 0, occluded: 0 } };
+        const stats = { visible: 0, cells: { extruded: 0, terminals: 0, held: 0 }, pointBatches: 0, terminals: { 4: 0, 3: 0, 2: 0, coarse: 0, occluded: 0 }, trees: { billboards: 0, points: 0, terminals: 0, edited: 0, occluded: 0 } };
         // The base volumes the last update left in the cell groups, seen from this view.
         const occlusion = this.occluders ? this.occluders.update(view, this.occluderVersion) : null;
         const p = view.position;
@@ -229,7 +234,7 @@ export class Streamer {
             }
             const objects = [];
             const local = [p[0] - cell.origin[0], p[1] - cell.origin[1], p[2] - cell.origin[2]]; // the camera, cell-local
-            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests, view: terminalView, occlusion, heldBack };
+            const frame = { cell, visible, sse, distances, local, stats, objects, pinned, requests, view: terminalView, occlusion, heldBack, treePoints };
             for (const b of cell.batches) {
                 if (this.grammar(b.grammar)?.kind === 'tree') {
                     this.updateTrees(b, decision, treeDistance, frame);
@@ -399,7 +404,7 @@ export class Streamer {
         const { local, stats, visible } = frame;
         // Near, with its terminals in, the cut is by distance; else every tree that can be is a
         // billboard (far, only the edited trees' terminals are drawn).
-        if (boards) boards.trees.updateCut(local, term && near ? treeDistance : 0, frame.occlusion);
+        if (boards) boards.trees.updateCut(local, term && near ? treeDistance : 0, frame.occlusion, frame.treePoints);
         if (term) this.showTerminals(b, term, frame, boards?.trees ?? null);
         if (boards) {
             frame.pinned.add(boards.url);
@@ -409,11 +414,13 @@ export class Streamer {
         if (!term && !boards) b.drawn = null;
         if (!visible) return;
         const members = boards?.trees.speciesOfTree.length ?? b.members;
-        // Billboards the occlusion tiles hide are billboards still, not drawn.
+        // Far trees the occlusion tiles hide count as billboards, not drawn.
         const billboards = (boards?.trees.count ?? 0) + (boards?.trees.occluded ?? 0);
+        const points = boards?.trees.pointCount ?? 0;
         stats.trees.billboards += billboards;
+        stats.trees.points += points;
         stats.trees.occluded += boards?.trees.occluded ?? 0;
-        if (term) stats.trees.terminals += members - billboards;
+        if (term) stats.trees.terminals += members - billboards - points;
         if (term && !near) stats.trees.edited += boards.trees.unmatched;
     }
 
