@@ -2,7 +2,8 @@
 // S`, chromium (the browser test's setup), each query's view once everything it wants is loaded
 // (harness.settledView); prints one JSON object with each view's terminals and trees per LOD
 // and how far apart the two images are (PSNR, pixels that differ, pixels more than 24 of 255
-// apart), and saves the two canvases as PNGs when OUT_DIR is given. For example, occlusion
+// apart), and saves the two canvases as PNGs when OUT_DIR is given. The canvas has no samples
+// unless a query says `aa=1`. For example, occlusion
 // culling on and off:
 //   node web/bench/compare_views.mjs build/apps/hexlod configs/default.json 640x360 \
 //       'camera=0,-700,1.7,90,0&mode=walk&occlusion=1' 'camera=0,-700,1.7,90,0&mode=walk&occlusion=0'
@@ -24,7 +25,8 @@ const browser = await launchChromium({ width, height });
 try {
     const base = await server.url;
     const views = [];
-    for (const query of [queryA, queryB]) views.push(await settledView(browser.page, `${base}?aa=0${query ? `&${query}` : ''}`, 600000));
+    // Without multisampling unless a query asks for it (`aa=1`: the viewer reads the first aa).
+    for (const query of [queryA, queryB]) views.push(await settledView(browser.page, `${base}?${query ? `${query}&` : ''}aa=0`, 600000));
     const difference = await imageDifference(browser.page, views[0].image, views[1].image);
     if (out) {
         fs.mkdirSync(out, { recursive: true });

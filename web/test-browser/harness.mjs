@@ -79,7 +79,9 @@ export async function settledView(page, url, timeout = 90000) {
 }
 
 // Two PNGs of one size compared in the page (no PNG library needed here): PSNR over RGB,
-// the pixels that differ at all and those apart by more than 24 of 255 in a channel.
+// the pixels that differ at all and those apart by more than 24 of 255 in a channel, and
+// `blockPsnr`, the PSNR of the images' means over blocks of 4 x 4 pixels: what the eye
+// integrates, where a field of sub-pixel points stands for shapes at other pixels.
 export async function imageDifference(page, a, b) {
     return page.evaluate(
         async ({ a, b }) => {
@@ -90,6 +92,20 @@ export async function imageDifference(page, a, b) {
                 return context.getImageData(0, 0, bitmap.width, bitmap.height).data;
             };
             const [pa, pb] = [await decode(a), await decode(b)];
+            const { width } = await createImageBitmap(await (await fetch(`data:image/png;base64,${a}`)).blob());
+            const psnrOf = (se, samples) => (se === 0 ? Infinity : 10 * Math.log10((255 * 255) / (se / samples)));
+            // Per block of 4 x 4 (the last row and column of partial blocks left out), RGB sums.
+            const blocks = (p) => {
+                const across = Math.floor(width / 4), down = Math.floor(p.length / 4 / width / 4);
+                const sums = new Float64Array(3 * across * down);
+                for (let y = 0; y < 4 * down; ++y)
+                    for (let x = 0; x < 4 * across; ++x)
+                        for (let k = 0; k < 3; ++k) sums[3 * (Math.floor(y / 4) * across + Math.floor(x / 4)) + k] += p[4 * (y * width + x) + k];
+                return sums;
+            };
+            const [ba, bb] = [blocks(pa), blocks(pb)];
+            let blockSe = 0;
+            for (let i = 0; i < ba.length; ++i) blockSe += ((ba[i] - bb[i]) / 16) ** 2;
             let se = 0, different = 0, apart = 0;
             for (let i = 0; i < pa.length; i += 4) {
                 let most = 0;
@@ -101,7 +117,7 @@ export async function imageDifference(page, a, b) {
                 apart += most > 24;
             }
             const pixels = pa.length / 4;
-            return { psnr: se === 0 ? Infinity : 10 * Math.log10((255 * 255) / (se / (3 * pixels))), different, apart, pixels };
+            return { psnr: psnrOf(se, 3 * pixels), blockPsnr: psnrOf(blockSe, ba.length), different, apart, pixels };
         },
         { a: a.toString('base64'), b: b.toString('base64') },
     );

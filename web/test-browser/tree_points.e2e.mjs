@@ -2,10 +2,11 @@
 // own in chromium, seen from about 1.4 km, where each tree's sphere spans about two pixels. The
 // same view is drawn with far trees as points (the default), as billboards (?treepoints=0) and
 // without trees: the points must stand for the far trees, cover about the pixels the billboards
-// cover and look closer to them than no trees. The canvas is multisampled, as the viewer's
-// default: the billboards' coverage is then their alpha, as the points' areas assume (with
-// ?aa=0 the billboards' cutout at one half drops their sparse texels, and the points cover
-// about a quarter more than they do). Screenshots go to $HEXLOD_WEB_ARTIFACTS.
+// cover and look closer to them than no trees, pixel for pixel and more so over blocks of 4 x 4
+// pixels, where points and billboards in neighbouring pixels meet. The canvas is multisampled,
+// as the viewer's default: the billboards' coverage is then their alpha, as the points' areas
+// assume (with ?aa=0 the points take the share of texels a cutout at one half keeps, and cover
+// about a fifth more than the billboards). Screenshots go to $HEXLOD_WEB_ARTIFACTS.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -63,8 +64,10 @@ test('far trees are points that stand for their billboards', { timeout: 300000 }
         const against = await imageDifference(page, points.image, billboards.image);
         const nothing = await imageDifference(page, none.image, billboards.image);
         console.log(`tree points: ${drawn.points} points, ${drawn.billboards} billboards, ${points.state.triangles} triangles against ${billboards.state.triangles}; ` +
-            `cover ${coverage.toFixed(2)} of the billboards' ${boardPixels} pixels; ${against.psnr.toFixed(1)} dB from the billboards, no trees ${nothing.psnr.toFixed(1)} dB`);
+            `cover ${coverage.toFixed(2)} of the billboards' ${boardPixels} pixels; ${against.psnr.toFixed(1)} dB from the billboards, no trees ${nothing.psnr.toFixed(1)} dB; ` +
+            `over 4 x 4 blocks ${against.blockPsnr.toFixed(1)} and ${nothing.blockPsnr.toFixed(1)} dB`);
         assert.ok(coverage > 0.7 && coverage < 1.4, `the points cover ${coverage.toFixed(2)} of the billboards' pixels`);
         assert.ok(against.psnr > nothing.psnr + 2.5, `PSNR against the billboards: points ${against.psnr.toFixed(2)} dB, no trees ${nothing.psnr.toFixed(2)} dB`);
+        assert.ok(against.blockPsnr > nothing.blockPsnr + 5, `over 4 x 4 blocks: points ${against.blockPsnr.toFixed(2)} dB, no trees ${nothing.blockPsnr.toFixed(2)} dB`);
     });
 });

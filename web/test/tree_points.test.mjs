@@ -1,6 +1,7 @@
 // Far trees as points (src/render/tree_points.js, tree_view_averages.js): each view's averages
-// over its own inner square weighted by coverage, in linear light; the rule that makes a tree a
-// point; and the species table the shader reads.
+// over its own inner square weighted by coverage, in linear light, and the share of its texels
+// a cutout at one half keeps; the rule that makes a tree a point; and the species table the
+// shader reads.
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
@@ -28,7 +29,7 @@ function atlas(fill) {
 
 const linear = (byte) => ((byte / 255 + 0.055) / 1.055) ** 2.4;
 
-test('each view averages its own inner square, weighted by coverage, in linear light', () => {
+test('each view averages its own inner square, weighted by coverage, in linear light, and counts what a cutout keeps', () => {
     // View 0: half its texels opaque sRGB 255 (red), half empty; view 1: a quarter at alpha
     // 128 of sRGB 128 grey; views 2 and 3: empty, and full with two normals.
     const { albedo, normal, width, layout } = atlas((v, x, y) => {
@@ -41,11 +42,11 @@ test('each view averages its own inner square, weighted by coverage, in linear l
     assert.equal(out.length, 32);
     const view = (v) => Array.from(out.slice(8 * v, 8 * v + 8));
     const near = (a, b, what) => a.forEach((x, i) => assert.ok(Math.abs(x - b[i]) < 2e-3, `${what}: ${a} against ${b}`));
-    near(view(0), [1, 0, 0, 0.5, 1, 0.0039, 0.0039, 0], 'half covered red, normal +x');
-    near(view(1), [linear(128), linear(128), linear(128), 0.25 * (128 / 255), 0.0039, 0.0039, 1, 0], 'grey at its linear value, a quarter at half coverage');
+    near(view(0), [1, 0, 0, 0.5, 1, 0.0039, 0.0039, 0.5], 'half covered red, normal +x, half its texels solid');
+    near(view(1), [linear(128), linear(128), linear(128), 0.25 * (128 / 255), 0.0039, 0.0039, 1, 0.25], 'grey at its linear value, a quarter at half coverage (128 of 255: kept by a cutout)');
     near(view(2), [0, 0, 0, 0, 0, 0, 0, 0], 'an empty view averages nothing');
     // View 3: half at alpha 1 with normal +x, half at 1/3 with +y: the normal leans 3:1.
-    near(view(3), [0, 1, 0, (1 + 85 / 255) / 2, 0.75, 0.25 + 0.75 * 0.0039, 0.0039, 0], 'normals weighted by coverage');
+    near(view(3), [0, 1, 0, (1 + 85 / 255) / 2, 0.75, 0.25 + 0.75 * 0.0039, 0.0039, 0.5], 'normals weighted by coverage; a cutout keeps the opaque half');
 });
 
 test('an atlas smaller than its layout is refused', () => {
@@ -67,7 +68,7 @@ test('a tree is a point once its sphere spans under the point size', () => {
 
 test('the species table holds each species sphere and view averages in its row', () => {
     const { lighting } = makeLights();
-    const material = new TreePointMaterial({}, lighting);
+    const material = new TreePointMaterial({}, lighting, true);
     const averages = Float32Array.from({ length: 32 }, (_, i) => i / 32);
     material.setSpecies([{ impostor: { centre: [1, 2, 3], radius: 4 }, averages }, undefined, { impostor: { centre: [0, 0, 6], radius: 7 }, averages: null }]);
     const table = material.uniforms.speciesTable.value;

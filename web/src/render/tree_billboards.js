@@ -55,7 +55,7 @@ export class TreeBillboards {
         this.pointSpecies = new Set([...perSpecies.keys()].filter((s) => species.hasPoints(s)));
         this.points = pointTrees > 0 ? species.makePoints(pointTrees) : null;
         if (this.points) this.group.add(this.points);
-        // The smallest distance per metre of diameter at which some species is a point.
+        // The smallest sphere of a species drawn as points: the nearest point threshold.
         this.smallestRadius = Math.min(...[...this.pointSpecies].map((s) => this.spheres.get(s)[3]));
         this.farIds = new Set(); // the trees drawn far, as billboards or points, now
         this.count = 0; // billboards drawn

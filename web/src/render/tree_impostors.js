@@ -195,7 +195,7 @@ export class TreeImpostors {
     // Room for `capacity` far trees drawn as points (tree_points.js).
     makePoints(capacity) {
         if (!this.points) {
-            this.points = new TreePointMaterial(this.table, this.lighting);
+            this.points = new TreePointMaterial(this.table, this.lighting, this.multisampled);
             this.points.setSpecies(this.species);
         }
         return new TreePoints(this.points, capacity);

@@ -40,6 +40,7 @@ attribute float species;     // the tree's species: its row of the table
 uniform sampler2D speciesTable; // per species: sphere (centre, radius), then per view albedo and coverage, normal
 uniform float screenScale;   // pixels one metre spans at one metre's distance
 uniform vec3 sunDirection;
+uniform bool multisampled;   // the billboards' coverage is alpha to coverage, not a cutout
 flat out vec3 vColour;
 ${TREE_VIEWS_GLSL}
 ${VIEW_TABLE_GLSL}
@@ -56,9 +57,11 @@ void main() {
     tableBlend(treeTablePosition(toCamera), views, weights);
     int view = int(views.x + 0.5); // the view that weighs most
     vec4 albedo = texelFetch(speciesTable, ivec2(1 + 2 * view, row), 0);
-    vec3 normal = texelFetch(speciesTable, ivec2(2 + 2 * view, row), 0).xyz;
-    // The sphere's diameter on screen, shrunk to the area the tree covers in it.
-    float side = 2.0 * sphere.w * screenScale / distance * sqrt(albedo.a);
+    vec4 normal = texelFetch(speciesTable, ivec2(2 + 2 * view, row), 0);
+    // The sphere's diameter on screen, shrunk to the area the tree covers in it: its billboard's
+    // coverage, or the texels its cutout keeps.
+    float covered = multisampled ? albedo.a : normal.w;
+    float side = 2.0 * sphere.w * screenScale / distance * sqrt(covered);
     gl_PointSize = max(side, 1.0);
     if (side < 1.0 && coverageHash(position) >= side * side) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // outside the clip volume
@@ -68,7 +71,7 @@ void main() {
     // normal is not made unit: the sky's light is linear in the normal, so the mean normal
     // gives the view's mean exactly, and a unit one would light a canopy whose normals spread
     // as if they all faced one way (brighter than its billboard by about a sixth).
-    vColour = albedo.rgb * lambertLight(normal, sunDirection, vec3(0.0, 0.0, 1.0));
+    vColour = albedo.rgb * lambertLight(normal.xyz, sunDirection, vec3(0.0, 0.0, 1.0));
     vec4 mvPosition = viewMatrix * vec4(centre, 1.0);
     gl_Position = projectionMatrix * mvPosition;
     #include <fog_vertex>
@@ -76,9 +79,11 @@ void main() {
 `;
 
 // The one material every batch's tree points share, with the table of the species that have
-// view averages. `table`: the tree view table's uniforms (view_table.js layoutTableUniforms).
+// view averages. `table`: the tree view table's uniforms (view_table.js layoutTableUniforms);
+// `multisampled`: whether the billboards the points stand for cover by alpha to coverage
+// (tree_impostors.js), else by a cutout at one half.
 export class TreePointMaterial extends THREE.ShaderMaterial {
-    constructor(table, lighting) {
+    constructor(table, lighting, multisampled) {
         super({
             vertexShader: VERTEX,
             fragmentShader: POINT_FRAGMENT,
@@ -88,6 +93,7 @@ export class TreePointMaterial extends THREE.ShaderMaterial {
                 ...table, // shared with the billboards, not copied
                 speciesTable: { value: null },
                 screenScale: { value: 1 },
+                multisampled: { value: multisampled },
                 sunDirection: { value: lighting.sunDirection },
                 ...lightingUniforms(lighting),
             },

@@ -14,7 +14,9 @@ const SRGB_TO_LINEAR = Float32Array.from({ length: 256 }, (_, i) => {
 // `albedo`, `normal`: RGBA bytes of the two atlases, `width` texels a row (not premultiplied,
 // as getImageData gives them); `layout`: the scene's tree_impostor_layout (grid,
 // view_resolution, padding). Returns 8 floats per view, row-major as the tiles: mean linear
-// albedo, coverage (the covered share of the inner square), mean normal (not unit), 0.
+// albedo, coverage (the covered share of the inner square), mean normal (not unit), and the
+// share of texels at least half covered: what a billboard cut out at one half covers, on a
+// canvas without samples for alpha to coverage.
 export function treeViewAverages(albedo, normal, width, layout) {
     const { grid, view_resolution: resolution, padding } = layout;
     const inner = resolution - 2 * padding;
@@ -23,7 +25,7 @@ export function treeViewAverages(albedo, normal, width, layout) {
     const out = new Float32Array(8 * grid * grid);
     for (let view = 0; view < grid * grid; ++view) {
         const x0 = (view % grid) * resolution + padding, y0 = Math.floor(view / grid) * resolution + padding;
-        let r = 0, g = 0, b = 0, nx = 0, ny = 0, nz = 0, alpha = 0;
+        let r = 0, g = 0, b = 0, nx = 0, ny = 0, nz = 0, alpha = 0, solid = 0;
         for (let y = y0; y < y0 + inner; ++y) {
             for (let i = 4 * (y * width + x0), end = i + 4 * inner; i < end; i += 4) {
                 const a = albedo[i + 3] / 255;
@@ -35,9 +37,11 @@ export function treeViewAverages(albedo, normal, width, layout) {
                 ny += a * (normal[i + 1] / 127.5 - 1);
                 nz += a * (normal[i + 2] / 127.5 - 1);
                 alpha += a;
+                solid += a >= 0.5;
             }
         }
-        if (alpha > 0) out.set([r / alpha, g / alpha, b / alpha, alpha / (inner * inner), nx / alpha, ny / alpha, nz / alpha, 0], 8 * view);
+        const texels = inner * inner;
+        if (alpha > 0) out.set([r / alpha, g / alpha, b / alpha, alpha / texels, nx / alpha, ny / alpha, nz / alpha, solid / texels], 8 * view);
     }
     return out;
 }
