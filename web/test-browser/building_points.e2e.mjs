@@ -9,7 +9,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import test from 'node:test';
 
-import { artifactsDir as artifacts, housesScene, imageDifference, settledView, withServedScene } from './harness.mjs';
+import { artifactsDir as artifacts, housesScene, imageDifference, settledView, statsShowing, withServedScene } from './harness.mjs';
 
 const width = 640, height = 360;
 
@@ -56,7 +56,7 @@ test('far batches are points that stand for their buildings', { timeout: 240000 
         const pitch = (-Math.atan2(up, back) * 180) / Math.PI;
         const camera = `camera=${centre[0]},${centre[1] - back},${city.ground + up},90,${pitch}`;
         const points = await settledView(page, `${base}?aa=0&${camera}`);
-        const stats = await page.locator('#stats').textContent();
+        const stats = await statsShowing(page, `; ${points.state.streamer.pointBatches} far batches as points`);
         const hidden = await withoutPoints(page);
         const shells = await settledView(page, `${base}?aa=0&${camera}&points=0`);
         fs.writeFileSync(path.join(artifacts, 'points-on.png'), points.image);

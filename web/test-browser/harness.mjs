@@ -78,6 +78,13 @@ export async function settledView(page, url, timeout = 90000) {
     return { state, image: Buffer.from(png.split(',')[1], 'base64') };
 }
 
+// The stats panel's text once it shows `text`: the panel is refreshed every 250 ms, so a state
+// read just now may be newer than it. The text it has after `timeout` ms otherwise.
+export async function statsShowing(page, text, timeout = 5000) {
+    await page.waitForFunction((t) => document.getElementById('stats').textContent.includes(t), text, { timeout, polling: 50 }).catch(() => {});
+    return page.locator('#stats').textContent();
+}
+
 // Two PNGs of one size compared in the page (no PNG library needed here): PSNR over RGB,
 // the pixels that differ at all and those apart by more than 24 of 255 in a channel, and
 // `blockPsnr`, the PSNR of the images' means over blocks of 4 x 4 pixels: what the eye
@@ -139,6 +146,19 @@ export function housesScene({ name, seed, cellSize, count, floors }) {
         buildings: [{ source: 'procedural', count, block_size: 50, street_width: 10,
             districts: [{ grammar: 'residential', share: 1, floors, lot: [14, 16] }] }],
         lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0] },
+    };
+}
+
+// A scene config of `houses` residential houses on blocks of 60 m, `parkShare` of the blocks
+// parks, and `trees` trees of the shipped species, with a tree error of 1 m: for the tree tests.
+export function parkScene({ name, seed, cellSize, houses, parkShare, trees }) {
+    return {
+        name, seed, cell_size: cellSize,
+        grammars: { residential: { file: path.join(configsDir, 'grammars', 'residential.grammar') } },
+        buildings: [{ source: 'procedural', count: houses, block_size: 60, street_width: 12, park_share: parkShare,
+            districts: [{ grammar: 'residential', share: 1, floors: [2, 3], lot: [16, 18] }] }],
+        trees: { count: trees, species: path.join(configsDir, 'species.json') },
+        lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0], tree_geometric_error: 1 },
     };
 }
 

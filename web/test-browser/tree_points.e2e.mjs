@@ -12,18 +12,11 @@ import fs from 'node:fs';
 import path from 'node:path';
 import test from 'node:test';
 
-import { artifactsDir as artifacts, configsDir as configs, imageDifference, settledView, withServedScene } from './harness.mjs';
+import { artifactsDir as artifacts, imageDifference, parkScene, settledView, statsShowing, withServedScene } from './harness.mjs';
 
 const width = 640, height = 360;
 
-const scene = {
-    name: 'tree-points-test', seed: 11, cell_size: 120,
-    grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
-    buildings: [{ source: 'procedural', count: 30, block_size: 60, street_width: 12, park_share: 0.7,
-        districts: [{ grammar: 'residential', share: 1, floors: [2, 3], lot: [16, 18] }] }],
-    trees: { count: 1500, species: path.join(configs, 'species.json') },
-    lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0], tree_geometric_error: 1 },
-};
+const scene = parkScene({ name: 'tree-points-test', seed: 11, cellSize: 120, houses: 30, parkShare: 0.7, trees: 1500 });
 
 test('far trees are points that stand for their billboards', { timeout: 300000 }, async () => {
     await withServedScene(scene, { impostorGrid: 4, viewport: { width, height } }, async ({ base, page, pageErrors }) => {
@@ -41,7 +34,8 @@ test('far trees are points that stand for their billboards', { timeout: 300000 }
         const pitch = (-Math.atan2(up, back) * 180) / Math.PI;
         const camera = `camera=${city.centre[0]},${city.centre[1] - back},${city.ground + up},90,${pitch}`;
         const points = await settledView(page, `${base}?${camera}`);
-        const stats = await page.locator('#stats').textContent();
+        const drawn = points.state.streamer.trees;
+        const stats = await statsShowing(page, `${drawn.billboards} billboards, ${drawn.points} points`);
         const billboards = await settledView(page, `${base}?${camera}&treepoints=0`);
         const none = await settledView(page, `${base}?${camera}&trees=none`);
         for (const [name, shot] of Object.entries({ points, billboards, none }))
@@ -49,7 +43,7 @@ test('far trees are points that stand for their billboards', { timeout: 300000 }
         assert.deepEqual(pageErrors, []);
         assert.deepEqual(consoleErrors, []);
 
-        const drawn = points.state.streamer.trees, boards = billboards.state.streamer.trees;
+        const boards = billboards.state.streamer.trees;
         assert.ok(drawn.points > 500, `trees ${JSON.stringify(drawn)}`);
         assert.match(stats, new RegExp(`${drawn.billboards} billboards, ${drawn.points} points`), 'the stats panel says so');
         assert.equal(boards.points, 0, '?treepoints=0 draws none');

@@ -14,18 +14,11 @@ import assert from 'node:assert/strict';
 import path from 'node:path';
 import test from 'node:test';
 
-import { artifactsDir as artifacts, configsDir as configs, withServedScene } from './harness.mjs';
+import { artifactsDir as artifacts, parkScene, withServedScene } from './harness.mjs';
 
 const width = 800, height = 450;
 
-const scene = {
-    name: 'tree-test', seed: 3, cell_size: 60,
-    grammars: { residential: { file: path.join(configs, 'grammars', 'residential.grammar') } },
-    buildings: [{ source: 'procedural', count: 4, block_size: 60, street_width: 12, park_share: 0.5,
-        districts: [{ grammar: 'residential', share: 1, floors: [2, 3], lot: [16, 18] }] }],
-    trees: { count: 40, species: path.join(configs, 'species.json') },
-    lod: { max_screen_space_error: 2, hysteresis: 0.2, geometric_error: [16, 4, 1, 0.25, 0], tree_geometric_error: 1 },
-};
+const scene = parkScene({ name: 'tree-test', seed: 3, cellSize: 60, houses: 4, parkShare: 0.5, trees: 40 });
 
 // Per image pair, decoded in the page: the pixels each of two images changes against a third
 // (more than 24 of 255 in a channel), the overlap of those masks, and PSNR between images.

@@ -79,9 +79,14 @@ test('the species table holds each species sphere and view averages in its row',
     assert.deepEqual(row(0).slice(4), Array.from(averages));
     assert.deepEqual(row(1), new Array(36).fill(0), 'no species');
     assert.deepEqual(row(2), new Array(36).fill(0), 'no averages: its trees are never points');
-    // A new species replaces the table.
-    material.setSpecies([{ impostor: { centre: [1, 2, 3], radius: 4 }, averages }]);
-    assert.notEqual(material.uniforms.speciesTable.value, table);
+    // A new species replaces the table; indices may have holes.
+    const sparse = [];
+    sparse[3] = { impostor: { centre: [1, 2, 3], radius: 4 }, averages };
+    material.setSpecies(sparse);
+    const replaced = material.uniforms.speciesTable.value;
+    assert.notEqual(replaced, table);
+    assert.deepEqual([replaced.image.width, replaced.image.height], [9, 4]);
+    assert.deepEqual(Array.from(replaced.image.data.slice(4 * 9 * 3, 4 * 9 * 3 + 4)), [1, 2, 3, 4]);
 });
 
 test('a batch of points draws the first points placed, and nothing when none are', () => {

@@ -103,7 +103,10 @@ export class TreePointMaterial extends THREE.ShaderMaterial {
     // The table from `species` (by index: {impostor: {centre, radius}, averages}, or empty
     // where an index has no species): row i is species i's sphere, then its views' averages.
     setSpecies(species) {
-        const views = Math.max(0, ...species.map((s) => (s?.averages?.length ?? 0) / 8));
+        // for...of, not map: species indices come as the service numbers them, with holes
+        // (a retired species), which map would skip and Math.max read as NaN.
+        let views = 0;
+        for (const s of species) views = Math.max(views, (s?.averages?.length ?? 0) / 8);
         const width = 1 + 2 * views, height = Math.max(species.length, 1);
         const data = new Float32Array(4 * width * height);
         species.forEach((s, row) => {
