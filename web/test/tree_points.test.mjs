@@ -54,6 +54,7 @@ test('an atlas smaller than its layout is refused', () => {
     assert.throws(() => treeViewAverages(albedo, normal, 16, { grid: 4, view_resolution: 8, padding: 2 }), RangeError);
     assert.throws(() => treeViewAverages(albedo, normal.subarray(4), 16, { grid: 2, view_resolution: 8, padding: 2 }), RangeError);
     assert.throws(() => treeViewAverages(albedo, normal, 16, { grid: 2, view_resolution: 8, padding: 4 }), RangeError, 'no inner square');
+    assert.throws(() => treeViewAverages(albedo, normal, 8, { grid: 2, view_resolution: 8, padding: 2 }), RangeError, 'rows narrower than the grid');
 });
 
 test('a tree is a point once its sphere spans under the point size', () => {

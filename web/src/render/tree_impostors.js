@@ -139,7 +139,7 @@ export class TreeImpostors {
         this.enabled &&= !!this.table;
         this.generation = 0; // grows with every species added after the start
         this.adding = new Set(); // species indices being loaded by add()
-        this.points = null; // the far trees' point material, once a batch draws points
+        this.pointMaterial = null; // the far trees' points' material, once a batch has points
         this.isReady = false;
         this.ready = (this.enabled ? this.load(scene.tree_species ?? []) : Promise.resolve()).then(() => (this.isReady = true));
     }
@@ -170,7 +170,7 @@ export class TreeImpostors {
         await this.load([entry]);
         this.adding.delete(entry.index);
         if (!this.species[entry.index]) return false;
-        this.points?.setSpecies(this.species);
+        this.pointMaterial?.setSpecies(this.species);
         ++this.generation;
         return true;
     }
@@ -194,11 +194,11 @@ export class TreeImpostors {
 
     // Room for `capacity` far trees drawn as points (tree_points.js).
     makePoints(capacity) {
-        if (!this.points) {
-            this.points = new TreePointMaterial(this.table, this.lighting, this.multisampled);
-            this.points.setSpecies(this.species);
+        if (!this.pointMaterial) {
+            this.pointMaterial = new TreePointMaterial(this.table, this.lighting, this.multisampled);
+            this.pointMaterial.setSpecies(this.species);
         }
-        return new TreePoints(this.points, capacity);
+        return new TreePoints(this.pointMaterial, capacity);
     }
 
     // The species index of a tree of `grammar` with these parameter values, or -1 (an edited

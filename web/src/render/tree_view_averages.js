@@ -20,7 +20,7 @@ const SRGB_TO_LINEAR = Float32Array.from({ length: 256 }, (_, i) => {
 export function treeViewAverages(albedo, normal, width, layout) {
     const { grid, view_resolution: resolution, padding } = layout;
     const inner = resolution - 2 * padding;
-    if (!(inner > 0) || albedo.length < 4 * width * grid * resolution || normal.length !== albedo.length)
+    if (!(inner > 0) || width < grid * resolution || albedo.length < 4 * width * grid * resolution || normal.length !== albedo.length)
         throw new RangeError(`tree atlas of ${albedo.length / 4} texels does not hold ${grid} x ${grid} views of ${resolution}`);
     const out = new Float32Array(8 * grid * grid);
     for (let view = 0; view < grid * grid; ++view) {

@@ -200,7 +200,7 @@ export class Streamer {
         const scale = screenScale(view.viewportHeight, view.fovY);
         const pixelScale = scale * this.world.renderer.getPixelRatio();
         if (this.materials.points) this.materials.points.uniforms.screenScale.value = pixelScale;
-        if (this.trees.points) this.trees.points.uniforms.screenScale.value = pixelScale;
+        if (this.trees.pointMaterial) this.trees.pointMaterial.uniforms.screenScale.value = pixelScale;
         const treePoints = pointDistancePerMetre(scale, this.profile.max_screen_space_error);
         const requests = [];
         const pinned = new Set();
@@ -402,8 +402,8 @@ export class Streamer {
         const term = wantTerminals ? this.pickTerminals(b) : null;
         b.shown = { extruded: boards?.url ?? null, terminal: term };
         const { local, stats, visible } = frame;
-        // Near, with its terminals in, the cut is by distance; else every tree that can be is a
-        // billboard (far, only the edited trees' terminals are drawn).
+        // Near, with its terminals in, the cut is by distance; else every tree that can be is far,
+        // a billboard or a point (far, only the edited trees' terminals are drawn).
         if (boards) boards.trees.updateCut(local, term && near ? treeDistance : 0, frame.occlusion, frame.treePoints);
         if (term) this.showTerminals(b, term, frame, boards?.trees ?? null);
         if (boards) {
@@ -414,7 +414,8 @@ export class Streamer {
         if (!term && !boards) b.drawn = null;
         if (!visible) return;
         const members = boards?.trees.speciesOfTree.length ?? b.members;
-        // Far trees the occlusion tiles hide count as billboards, not drawn.
+        // Far trees the occlusion tiles hide count as billboards (the stats panel says how
+        // many are hidden), not drawn.
         const billboards = (boards?.trees.count ?? 0) + (boards?.trees.occluded ?? 0);
         const points = boards?.trees.pointCount ?? 0;
         stats.trees.billboards += billboards;

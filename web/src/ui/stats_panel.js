@@ -36,7 +36,7 @@ export class StatsPanel {
             `camera ${s.position.map((v) => v.toFixed(1)).join(', ')}`,
             `cells in view ${s.streamer.visible}: LOD0 (extruded) ${s.streamer.cells.extruded}, terminal sets ${s.streamer.cells.terminals}${s.streamer.cells.held ? ` (${s.streamer.cells.held} held back by the cache budget: LOD0, trees as billboards)` : ''}${s.streamer.pointBatches ? `; ${s.streamer.pointBatches} far batches as points` : ''}`,
             `terminals drawn: LOD4 ${s.streamer.terminals[4]} (coarse mesh ${s.streamer.terminals.coarse}), LOD3 ${s.streamer.terminals[3]}, LOD2 ${s.streamer.terminals[2]}; ${s.occlusion}`,
-            `trees: ${s.streamer.trees.billboards} billboards, ${s.streamer.trees.points} points${s.streamer.trees.occluded ? ` (${s.streamer.trees.occluded} of them hidden)` : ''}, ${s.streamer.trees.terminals} from terminals${s.streamer.trees.edited ? ` (${s.streamer.trees.edited} edited ones far away)` : ''}`,
+            `trees: ${s.streamer.trees.billboards} billboards${s.streamer.trees.occluded ? ` (${s.streamer.trees.occluded} of them hidden)` : ''}, ${s.streamer.trees.points} points, ${s.streamer.trees.terminals} from terminals${s.streamer.trees.edited ? ` (${s.streamer.trees.edited} edited ones far away)` : ''}`,
             `downloaded ${(s.traffic.bytes / MiB).toFixed(2)} MiB in ${s.traffic.requests} requests (${s.traffic.errors} errors)`,
             `cache ${s.cache.entries} payloads, ${(s.cache.bytes / MiB).toFixed(1)} of ${(s.cache.budget / MiB).toFixed(0)} MiB, ${s.cache.evictions} evicted`,
             `requests pending ${s.pending}, in flight ${s.inFlight}, aborted ${s.aborted}`,
