@@ -2,10 +2,11 @@
 // chromium (the browser test's setup), one viewer URL; every 10 s it prints the seconds since
 // the page was opened and what the viewer holds (cache entries and bytes, requests pending, the
 // frame rate, the last frame's triangles, the extruded batches drawn as points, the tree
-// billboards and points), until the viewer is idle (everything it wants drawn) or LIMIT_SECONDS pass; then
-// one line with the median of 5 frames rendered by hand, each timed until a one-pixel
-// readPixels returns, with their draw calls, triangles and points. A view that frame_cost.mjs
-// cannot time, because it does not settle within that script's ten minutes, is measured here.
+// billboards and points), until the viewer is idle (everything it wants drawn) or
+// LIMIT_SECONDS pass; then one line with the median of 5 frames rendered by hand, each timed
+// until a one-pixel readPixels returns, with their draw calls, triangles and points. A view
+// that frame_cost.mjs cannot time, because it does not settle within that script's ten
+// minutes, is measured here.
 //   node web/bench/settle_time.mjs HEXLOD_BINARY SCENE WIDTHxHEIGHT VIEWER_QUERY [LIMIT_SECONDS]
 import { launchChromium, startServer } from '../test-browser/harness.mjs';
 

@@ -96,10 +96,9 @@ export async function imageDifference(page, a, b) {
                 const bitmap = await createImageBitmap(await (await fetch(`data:image/png;base64,${base64}`)).blob());
                 const context = new OffscreenCanvas(bitmap.width, bitmap.height).getContext('2d');
                 context.drawImage(bitmap, 0, 0);
-                return context.getImageData(0, 0, bitmap.width, bitmap.height).data;
+                return { data: context.getImageData(0, 0, bitmap.width, bitmap.height).data, width: bitmap.width };
             };
-            const [pa, pb] = [await decode(a), await decode(b)];
-            const { width } = await createImageBitmap(await (await fetch(`data:image/png;base64,${a}`)).blob());
+            const [{ data: pa, width }, { data: pb }] = [await decode(a), await decode(b)];
             const psnrOf = (se, samples) => (se === 0 ? Infinity : 10 * Math.log10((255 * 255) / (se / samples)));
             // Per block of 4 x 4 (the last row and column of partial blocks left out), RGB sums.
             const blocks = (p) => {
