@@ -75,8 +75,10 @@ test('count draws that many quads, and needsUpdate spreads the matrices written 
     assert.equal(quadX.array[16 * 1 + 4 * 3 + 3], matrix(20).elements[12]);
     quads.count = 9; // beyond the capacity: all four
     assert.equal(quads.count, 4);
+    assert.equal(quads.visible, true);
     quads.count = 0;
     assert.equal(quads.geometry.drawRange.count, 0);
+    assert.equal(quads.visible, false, 'nothing to draw: no draw');
 });
 
 test('vertices grow with the quads drawn, keep what was written, and never pass the capacity', () => {

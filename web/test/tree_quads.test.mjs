@@ -12,6 +12,7 @@ const material = new THREE.MeshBasicMaterial();
 test('a base reaches all four vertices of its quad, and only those', () => {
     const quads = new TreeQuads(material, 3);
     assert.equal(quads.count, 0, 'nothing drawn before show');
+    assert.equal(quads.visible, false, 'and no empty draw');
     quads.place(1, Float32Array.of(9, 9, 9, 4, 5, 6), 3);
     const bases = quads.geometry.attributes.treeBase;
     assert.deepEqual(Array.from(bases.array.subarray(12, 24)), [4, 5, 6, 4, 5, 6, 4, 5, 6, 4, 5, 6]);
@@ -20,6 +21,7 @@ test('a base reaches all four vertices of its quad, and only those', () => {
     const version = bases.version;
     quads.show(2);
     assert.equal(quads.count, 2);
+    assert.equal(quads.visible, true);
     assert.equal(quads.geometry.drawRange.count, 12);
     assert.ok(bases.version > version, 'show uploads the bases');
 });

@@ -68,7 +68,8 @@ function quadGeometry(quads, old) {
 // A merged mesh of quads (quadCorners' six indices each) drawing the first `count` of at most
 // `capacity`: ImpostorQuads and tree_quads.js's TreeQuads. `count` stands where an
 // InstancedMesh's would, so what reads one reads the other. Not frustum culled: the cell's
-// bounds decide what is visible.
+// bounds decide what is visible. None to draw: not drawn at all (three.js would still bind the
+// program and issue an empty draw).
 export class QuadMesh extends THREE.Mesh {
     constructor(geometry, material, capacity) {
         super(geometry, material); // which sets `count` (to 1) before there is a capacity: 0
@@ -81,6 +82,7 @@ export class QuadMesh extends THREE.Mesh {
     }
     set count(quads) {
         this.geometry.setDrawRange(0, 6 * Math.max(0, Math.min(quads, this.capacity ?? 0)));
+        this.visible = this.geometry.drawRange.count > 0;
     }
 }
 

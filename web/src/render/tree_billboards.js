@@ -26,7 +26,6 @@ export class TreeBillboards {
         this.unmatched = 0;
         this.generation = species.generation; // the species known when the trees were matched
         const perSpecies = new Map(); // species index -> trees
-        let pointTrees = 0; // trees whose species can be drawn as points
         for (let i = 0; i < n; ++i) {
             for (let j = 0; j < values.length; ++j) values[j] = set.parameters[j][i];
             const s = species.speciesOf(set.grammar, values);
@@ -40,7 +39,6 @@ export class TreeBillboards {
             this.bases.set([x / Math.max(count, 1), y / Math.max(count, 1), buildings.baseElevation[i]], 3 * i);
             if (s < 0) ++this.unmatched;
             else perSpecies.set(s, (perSpecies.get(s) ?? 0) + 1);
-            if (s >= 0 && species.hasPoints(s)) ++pointTrees;
         }
         this.treeIds = buildings.id;
         this.meshes = new Map(); // species index -> TreeQuads, `count` the billboards drawn
@@ -53,6 +51,8 @@ export class TreeBillboards {
             this.spheres.set(s, [...centre, radius]);
         }
         this.pointSpecies = new Set([...perSpecies.keys()].filter((s) => species.hasPoints(s)));
+        let pointTrees = 0; // trees whose species can be drawn as points
+        for (const s of this.pointSpecies) pointTrees += perSpecies.get(s);
         this.points = pointTrees > 0 ? species.makePoints(pointTrees) : null;
         if (this.points) this.group.add(this.points);
         // The smallest sphere of a species drawn as points: the nearest point threshold.

@@ -27,11 +27,9 @@ export class TreeQuads extends QuadMesh {
         for (let v = 0; v < 4; ++v) out.set(bases.subarray(offset, offset + 3), 12 * slot + 3 * v);
     }
 
-    // Draws the first `count` billboards placed, and uploads their bases. None: no draw at all
-    // (three.js would still bind the program and issue an empty one).
+    // Draws the first `count` billboards placed, and uploads their bases.
     show(count) {
         this.count = count;
-        this.visible = count > 0;
         this.geometry.attributes.treeBase.needsUpdate = true;
     }
 
